@@ -1,0 +1,237 @@
+// SPDX-License-Identifier: MIT
+// part_template: a deformable part-based template (dissertation 5.3.1): oriented boxes with Gaussians, as JSON.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/types.hpp"
+#include "shapestruct/io/json.hpp"
+
+namespace shapestruct {
+
+/// One part of a template: an oriented box whose centre and anisotropic size are Gaussian random variables
+/// (independent per box axis, since the fitter solves each axis separately, eq. 5.6 and 5.3.2 step iii), plus a
+/// Gaussian over the per-point local shape features of the points it explains.
+/// All positions are in the template's canonical frame: shapes are centred on their bounding-box centre and
+/// scaled to unit bounding-box diagonal before fitting (template_fitter), so templates are scale-free.
+struct part_box {
+  std::string name;                             ///< free text ("seat", "leg 1")
+  index_t label = 0;                            ///< output label; boxes may share one (four legs, one label)
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< mean centre mu^p (canonical frame)
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  ///< rows: the box's orthonormal axes (not deformed)
+  Eigen::Vector3d size = Eigen::Vector3d::Constant(0.1);     ///< mean side lengths mu^s along the axes
+  Eigen::Vector3d sigma_center = Eigen::Vector3d::Constant(0.05);  ///< sigma^p per box axis
+  Eigen::Vector3d sigma_size = Eigen::Vector3d::Constant(0.05);    ///< sigma^s per box axis
+  Eigen::VectorXd feature_mean;                 ///< mu^f, one entry per feature (empty: features not used)
+  Eigen::VectorXd feature_sigma;                ///< sigma^f, same length
+  bool must_exist = false;                      ///< a fit that leaves this part empty is rejected (5.3.2)
+};
+
+/// A template: boxes plus the collection's up axis (rotations are searched about it). `id` names the template
+/// in outputs and clusters.
+struct part_template {
+  std::string id = "template";
+  int up_axis = 1;  ///< 0 = x, 1 = y, 2 = z of the input shapes
+  std::vector<part_box> parts;
+
+  [[nodiscard]] index_t num_parts() const noexcept { return static_cast<index_t>(parts.size()); }
+  /// Number of distinct output labels (max label + 1).
+  [[nodiscard]] index_t num_labels() const noexcept {
+    index_t l = 0;
+    for (const auto& p : parts) l = std::max(l, p.label + 1);
+    return l;
+  }
+};
+
+/// Checks a template's invariants: at least one part; finite numbers; positive sizes and sigmas; orthonormal
+/// axes; every part with the same feature dimension (or all without features); non-negative labels; up axis in
+/// {0, 1, 2}. `who` names the caller (or the file) in the message.
+/// \throws invalid_input empty (no parts), non_finite / bad_parameter (part index), size_mismatch (part index,
+/// inconsistent feature dimensions). O(parts x features).
+inline void validate_template(const part_template& t, const std::string& who = "validate_template") {
+  if (t.parts.empty())
+    throw invalid_input(input_error::empty, no_index, who + ": template '" + t.id + "' has no parts");
+  if (t.up_axis < 0 || t.up_axis > 2)
+    throw invalid_input(input_error::bad_parameter, no_index,
+                        who + ": template '" + t.id + "' has up_axis " + std::to_string(t.up_axis) +
+                            ", expected 0, 1 or 2");
+  const auto dim = t.parts.front().feature_mean.size();
+  for (std::size_t i = 0; i < t.parts.size(); ++i) {
+    const part_box& b = t.parts[i];
+    const index_t pi = static_cast<index_t>(i);
+    const std::string where = who + ": template '" + t.id + "' part " + std::to_string(i) + " ('" + b.name + "')";
+    if (!b.center.allFinite() || !b.axes.allFinite() || !b.size.allFinite() || !b.sigma_center.allFinite() ||
+        !b.sigma_size.allFinite() || !b.feature_mean.allFinite() || !b.feature_sigma.allFinite())
+      throw invalid_input(input_error::non_finite, pi, where + " has a non-finite number");
+    if ((b.size.array() <= 0).any()) throw invalid_input(input_error::bad_parameter, pi, where + " has a size <= 0");
+    if ((b.sigma_center.array() <= 0).any() || (b.sigma_size.array() <= 0).any())
+      throw invalid_input(input_error::bad_parameter, pi, where + " has a standard deviation <= 0");
+    if (!(b.axes * b.axes.transpose()).isIdentity(1e-6))
+      throw invalid_input(input_error::bad_parameter, pi, where + " has axes that are not orthonormal");
+    if (b.label < 0) throw invalid_input(input_error::bad_parameter, pi, where + " has a negative label");
+    if (b.feature_mean.size() != dim || b.feature_sigma.size() != dim)
+      throw invalid_input(input_error::size_mismatch, pi,
+                          where + " has " + std::to_string(b.feature_mean.size()) + " feature means and " +
+                              std::to_string(b.feature_sigma.size()) + " feature sigmas; part 0 has " +
+                              std::to_string(dim));
+    if ((b.feature_sigma.array() <= 0).any())
+      throw invalid_input(input_error::bad_parameter, pi, where + " has a feature sigma <= 0");
+  }
+}
+
+namespace detail {
+
+inline json_value json_vec(const Eigen::VectorXd& v) {
+  json_value::array a;
+  for (index_t i = 0; i < v.size(); ++i) a.emplace_back(v[i]);
+  return json_value(std::move(a));
+}
+
+inline Eigen::VectorXd json_to_vec(const json_value& v, const std::string& what, index_t expected,
+                                   const std::string& path) {
+  if (!v.is_array()) throw io_error(file_error::bad_value, path, 0, 0, what + " must be an array of numbers");
+  const auto& a = v.as_array();
+  if (expected >= 0 && static_cast<index_t>(a.size()) != expected)
+    throw io_error(file_error::bad_value, path, 0, 0,
+                   what + " must have " + std::to_string(expected) + " numbers, found " + std::to_string(a.size()));
+  Eigen::VectorXd out(static_cast<index_t>(a.size()));
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!a[i].is_number()) throw io_error(file_error::bad_value, path, 0, 0, what + " must contain only numbers");
+    out[static_cast<index_t>(i)] = a[i].as_number();
+  }
+  return out;
+}
+
+}  // namespace detail
+
+// See io/json.hpp: GCC 12 false positives on the recursive variant, reported through the inlining stack.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Warray-bounds"
+#pragma GCC diagnostic ignored "-Wstringop-overflow"
+#endif
+
+/// The template as a JSON object (see docs/part_templates.md for the schema). O(parts x features).
+inline json_value template_to_json(const part_template& t) {
+  // Built from an initializer list: GCC 12 reports a false -Warray-bounds on emplace_back into an empty
+  // vector of this recursive pair type.
+  json_value::object o{{"id", json_value(t.id)}, {"up_axis", json_value(t.up_axis)}};
+  json_value::array parts;
+  for (const auto& b : t.parts) {
+    json_value::object p{{"name", json_value(b.name)}};
+    p.emplace_back("label", static_cast<long long>(b.label));
+    p.emplace_back("center", detail::json_vec(b.center));
+    json_value::array axes;
+    for (int r = 0; r < 3; ++r) axes.push_back(detail::json_vec(b.axes.row(r).transpose()));
+    p.emplace_back("axes", json_value(std::move(axes)));
+    p.emplace_back("size", detail::json_vec(b.size));
+    p.emplace_back("sigma_center", detail::json_vec(b.sigma_center));
+    p.emplace_back("sigma_size", detail::json_vec(b.sigma_size));
+    p.emplace_back("feature_mean", detail::json_vec(b.feature_mean));
+    p.emplace_back("feature_sigma", detail::json_vec(b.feature_sigma));
+    p.emplace_back("must_exist", b.must_exist);
+    parts.emplace_back(json_value(std::move(p)));
+  }
+  o.emplace_back("parts", json_value(std::move(parts)));
+  return json_value(std::move(o));
+}
+
+/// Builds a template from its JSON object. Optional keys take part_box's defaults ("axes" identity, sigmas 0.05,
+/// no features, "label" = part index, "must_exist" false); "center" and "size" are required. The result is
+/// validated (validate_template), so a template with no parts or inconsistent dimensions is rejected.
+/// \throws io_error bad_value naming `path` and the offending key; invalid_input from validate_template.
+inline part_template template_from_json(const json_value& v, const std::string& path = {}) {
+  if (!v.is_object()) throw io_error(file_error::bad_value, path, 0, 0, "a template must be a JSON object");
+  part_template t;
+  if (const auto* id = v.find("id")) {
+    if (!id->is_string()) throw io_error(file_error::bad_value, path, 0, 0, "\"id\" must be a string");
+    t.id = id->as_string();
+  }
+  if (const auto* up = v.find("up_axis")) {
+    if (!up->is_number() || std::floor(up->as_number()) != up->as_number())
+      throw io_error(file_error::bad_value, path, 0, 0, "\"up_axis\" must be an integer");
+    t.up_axis = static_cast<int>(up->as_number());
+  }
+  const auto* parts = v.find("parts");
+  if (parts == nullptr || !parts->is_array())
+    throw io_error(file_error::bad_value, path, 0, 0, "template '" + t.id + "' needs a \"parts\" array");
+  const auto& arr = parts->as_array();
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const json_value& p = arr[i];
+    const std::string where = "part " + std::to_string(i);
+    if (!p.is_object()) throw io_error(file_error::bad_value, path, 0, 0, where + " must be an object");
+    part_box b;
+    b.label = static_cast<index_t>(i);
+    if (const auto* n = p.find("name")) {
+      if (!n->is_string()) throw io_error(file_error::bad_value, path, 0, 0, where + ": \"name\" must be a string");
+      b.name = n->as_string();
+    }
+    if (const auto* l = p.find("label")) {
+      if (!l->is_number() || std::floor(l->as_number()) != l->as_number())
+        throw io_error(file_error::bad_value, path, 0, 0, where + ": \"label\" must be an integer");
+      b.label = static_cast<index_t>(l->as_number());
+    }
+    const auto* c = p.find("center");
+    const auto* s = p.find("size");
+    if (c == nullptr || s == nullptr)
+      throw io_error(file_error::bad_value, path, 0, 0, where + " needs \"center\" and \"size\"");
+    b.center = detail::json_to_vec(*c, where + ": \"center\"", 3, path);
+    b.size = detail::json_to_vec(*s, where + ": \"size\"", 3, path);
+    if (const auto* a = p.find("axes")) {
+      if (!a->is_array() || a->as_array().size() != 3)
+        throw io_error(file_error::bad_value, path, 0, 0, where + ": \"axes\" must be 3 rows of 3 numbers");
+      for (int r = 0; r < 3; ++r)
+        b.axes.row(r) = detail::json_to_vec(a->as_array()[static_cast<std::size_t>(r)], where + ": \"axes\" row", 3,
+                                            path)
+                            .transpose();
+    }
+    if (const auto* x = p.find("sigma_center")) b.sigma_center = detail::json_to_vec(*x, where + ": \"sigma_center\"", 3, path);
+    if (const auto* x = p.find("sigma_size")) b.sigma_size = detail::json_to_vec(*x, where + ": \"sigma_size\"", 3, path);
+    if (const auto* x = p.find("feature_mean")) b.feature_mean = detail::json_to_vec(*x, where + ": \"feature_mean\"", -1, path);
+    if (const auto* x = p.find("feature_sigma")) b.feature_sigma = detail::json_to_vec(*x, where + ": \"feature_sigma\"", -1, path);
+    if (const auto* x = p.find("must_exist")) {
+      if (!x->is_bool()) throw io_error(file_error::bad_value, path, 0, 0, where + ": \"must_exist\" must be true or false");
+      b.must_exist = x->as_bool();
+    }
+    t.parts.push_back(std::move(b));
+  }
+  validate_template(t, path.empty() ? std::string("template_from_json") : path);
+  return t;
+}
+
+/// Reads a template file: either one template object or {"templates": [ ... ]} (a template set).
+/// \throws io_error (cannot_open, syntax with line:column, bad_value naming the key) and invalid_input
+/// (validate_template, the message names the file). O(file size).
+inline std::vector<part_template> read_templates(const std::string& path) {
+  const json_value doc = read_json(path);
+  std::vector<part_template> out;
+  if (doc.is_object() && doc.find("templates") != nullptr) {
+    const json_value& arr = *doc.find("templates");
+    if (!arr.is_array()) throw io_error(file_error::bad_value, path, 0, 0, "\"templates\" must be an array");
+    for (const auto& t : arr.as_array()) out.push_back(template_from_json(t, path));
+    if (out.empty()) throw io_error(file_error::bad_value, path, 0, 0, "\"templates\" is empty");
+  } else {
+    out.push_back(template_from_json(doc, path));
+  }
+  return out;
+}
+
+/// Writes a template set as {"templates": [...]}. \throws io_error cannot_open / write_failed.
+inline void write_templates(const std::string& path, const std::vector<part_template>& ts) {
+  json_value::array arr;
+  for (const auto& t : ts) arr.push_back(template_to_json(t));
+  json_value::object o{{"templates", json_value(std::move(arr))}};
+  write_json(path, json_value(std::move(o)));
+}
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+
+}  // namespace shapestruct
