@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+// Private helpers shared by the geometry kernels: thread-count resolution, a deterministic parallel loop,
+// and clamped cotangents. No stability promise.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/types.hpp"
+
+namespace shapestruct::detail {
+
+/// Resolves a `threads` option: 0 means all hardware threads; negative values are rejected.
+/// \throws invalid_input (bad_parameter) if threads < 0.
+inline unsigned geometry_resolve_threads(int threads, const char* who) {
+  if (threads < 0)
+    throw invalid_input(input_error::bad_parameter, no_index,
+                        std::string(who) + ": threads must be >= 0 (0 = all cores), got " + std::to_string(threads));
+  if (threads == 0) return std::max(1u, std::thread::hardware_concurrency());
+  return static_cast<unsigned>(threads);
+}
+
+/// Runs body(worker, i) for i in [0, n) on up to `workers` std::threads, handing out items one at a time
+/// through an atomic counter (items may differ a lot in cost). Each item must write only its own output, so
+/// the result does not depend on the number of workers or the schedule. The first exception thrown by a
+/// body is rethrown on the calling thread after all workers stop.
+template <class Body>
+void geometry_parallel_for(index_t n, unsigned workers, Body&& body) {
+  if (n <= 0) return;
+  workers = static_cast<unsigned>(std::min<index_t>(static_cast<index_t>(std::max(1u, workers)), n));
+  if (workers == 1) {
+    for (index_t i = 0; i < n; ++i) body(0u, i);
+    return;
+  }
+  std::atomic<index_t> next{0};
+  std::atomic<bool> failed{false};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto run = [&](unsigned w) {
+    try {
+      for (index_t i = next.fetch_add(1); i < n && !failed.load(); i = next.fetch_add(1)) body(w, i);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+      failed.store(true);
+    }
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(workers - 1);
+  for (unsigned w = 1; w < workers; ++w) pool.emplace_back(run, w);
+  run(0);
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
+
+/// Largest |cot| the cotangent kernels produce. A triangle angle of 1e-5 rad (5.7e-4 degrees) already has
+/// cot = 1e5; scanned meshes (SCAPE) contain slivers and zero-area faces whose exact cotangents are huge or
+/// 0/0. Unclamped they put Inf/NaN into the Laplacian or make it so ill-conditioned (condition number ~ cot)
+/// that the LDLT solve loses all digits. No angle of a usable triangle comes near the bound, so clamping
+/// changes nothing on good meshes and keeps every entry finite on bad ones.
+inline constexpr double max_abs_cot = 1e5;
+
+/// cot of the angle between a and b, computed as dot / |cross| and clamped to [-limit, limit]. A zero-length
+/// edge (dot = 0, cross = 0) gives 0: such a corner contributes no weight.
+template <class Scalar>
+Scalar clamped_cot(const vec3<Scalar>& a, const vec3<Scalar>& b, double limit = max_abs_cot) {
+  const Scalar d = a.dot(b);
+  const Scalar c = a.cross(b).norm();
+  const Scalar lim = static_cast<Scalar>(limit);
+  if (!(c > Scalar(0))) return d > 0 ? lim : (d < 0 ? -lim : Scalar(0));
+  const Scalar r = d / c;
+  if (!std::isfinite(r)) return d > 0 ? lim : -lim;  // c subnormal: d / c overflows
+  return std::clamp(r, -lim, lim);
+}
+
+/// Triangle f's corners as vec3.
+template <class Scalar, class DV, class DF>
+inline void geometry_corners(const DV& V, const DF& F, index_t f, vec3<Scalar>& a, vec3<Scalar>& b, vec3<Scalar>& c) {
+  a = V.row(F(f, 0)).transpose();
+  b = V.row(F(f, 1)).transpose();
+  c = V.row(F(f, 2)).transpose();
+}
+
+/// Throws invalid_input(bad_parameter) naming the vertex if v is not in [0, n).
+inline void geometry_check_vertex(index_t v, index_t n, const char* who, const char* what) {
+  if (v < 0 || v >= n)
+    throw invalid_input(input_error::bad_parameter, v,
+                        std::string(who) + ": " + what + " " + std::to_string(v) + " is not a vertex index in [0, " +
+                            std::to_string(n) + ")");
+}
+
+}  // namespace shapestruct::detail

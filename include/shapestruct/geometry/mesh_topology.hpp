@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: MIT
+// require_closed_genus0_manifold: the topological precondition of mid-edge uniformization and blended maps.
+#pragma once
+
+#include <string>
+#include <type_traits>
+
+#include <Eigen/Core>
+
+#include "shapestruct/core/check_mesh.hpp"
+#include "shapestruct/core/concepts/surface_mesh.hpp"
+#include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/triangle_mesh.hpp"
+#include "shapestruct/core/types.hpp"
+#include "shapestruct/core/validate.hpp"
+
+namespace shapestruct {
+
+namespace detail {
+
+template <class DerivedV, class DerivedF>
+mesh_report check_for_requirement(const Eigen::MatrixBase<DerivedV>& V, const Eigen::MatrixBase<DerivedF>& F) {
+  using S = typename DerivedV::Scalar;
+  if constexpr (std::is_same_v<typename DerivedF::Scalar, index_t>) {
+    return check_mesh_kernel<S>(V.derived(), F.derived());
+  } else {
+    const face_matrix Fc = F.template cast<index_t>();
+    return check_mesh_kernel<S>(V.derived(), Fc);
+  }
+}
+
+inline std::string edge_name(const std::array<index_t, 2>& e) {
+  return "(" + std::to_string(e[0]) + ", " + std::to_string(e[1]) + ")";
+}
+
+}  // namespace detail
+
+/// Checks that (V, F) is a closed, orientable, connected 2-manifold of genus 0 (a topological sphere) with no
+/// stray vertices: the precondition of mid-edge uniformization (dissertation ch. 3), hence of blended
+/// intrinsic maps. Runs validate_mesh() first.
+/// \param V #V x 3 positions (floating point), \param F #F x 3 vertex indices (any integer type)
+/// \param who the calling function, named at the start of every message
+/// \throws invalid_input, checked in this order:
+///   - empty / non_finite / bad_face from validate_mesh();
+///   - non_manifold: element = the first vertex of a non-manifold edge (the message names the edge), else the
+///     non-manifold (bowtie) vertex;
+///   - unsupported_topology: element = the first vertex of a boundary edge (the mesh has holes); the smallest
+///     vertex of the second component (several pieces or unreferenced vertices); no_index for a non-orientable
+///     surface or genus > 0 (the message gives the genus).
+///   Each message names the precondition and the repair (geometry/mesh_repair.hpp) that would make the mesh
+///   acceptable, where one exists.
+/// \returns the mesh_report of the accepted mesh (callers may reuse its counts).
+/// Complexity: O(V log V + F log F).
+template <class DerivedV, class DerivedF>
+mesh_report require_closed_genus0_manifold(const Eigen::MatrixBase<DerivedV>& V, const Eigen::MatrixBase<DerivedF>& F,
+                                           const char* who) {
+  static_assert(std::is_floating_point_v<typename DerivedV::Scalar>, "V must have a floating-point scalar");
+  validate_mesh(V, F, who);
+  const mesh_report r = detail::check_for_requirement(V, F);
+  const std::string pre = std::string(who) + " needs a closed, connected, orientable manifold of genus 0 (a "
+                                             "topological sphere), but ";
+  if (r.num_non_manifold_edges > 0) {
+    const auto& e = r.non_manifold_edge_examples.front();
+    throw invalid_input(input_error::non_manifold, e[0],
+                        pre + "edge " + detail::edge_name(e) + " is shared by more than two faces (" +
+                            std::to_string(r.num_non_manifold_edges) +
+                            " such edges); no automatic repair exists: cut the extra faces off, or if they form "
+                            "a separate piece run keep_largest_component()");
+  }
+  if (r.num_non_manifold_vertices > 0) {
+    const index_t v = r.non_manifold_vertex_examples.front();
+    throw invalid_input(input_error::non_manifold, v,
+                        pre + "vertex " + std::to_string(v) +
+                            " joins several fans of faces that share no edge there (a bowtie; " +
+                            std::to_string(r.num_non_manifold_vertices) +
+                            " such vertices); no automatic repair exists: split the vertex, or if the fans belong "
+                            "to separate pieces run keep_largest_component()");
+  }
+  if (r.num_boundary_edges > 0) {
+    const auto& e = r.boundary_edge_examples.front();
+    throw invalid_input(input_error::unsupported_topology, e[0],
+                        pre + "it has a boundary: " + std::to_string(r.num_boundary_edges) + " boundary edges in " +
+                            std::to_string(r.num_boundary_loops) + " loops, e.g. edge " + detail::edge_name(e) +
+                            "; merge_duplicate_vertices() closes seams of split vertices and close_small_holes() "
+                            "fills holes (set max_boundary_loop_length to at least the longest loop)");
+  }
+  if (r.num_components > 1) {
+    // The first component starts at vertex 0; name the first vertex outside it.
+    const index_t second = r.components.size() > 1 ? r.components[1].first_vertex
+                           : r.unreferenced_vertex_examples.empty()
+                               ? no_index
+                               : r.unreferenced_vertex_examples.front();
+    const bool only_stray = r.components.size() == 1;
+    throw invalid_input(input_error::unsupported_topology, second,
+                        pre + "it has " + std::to_string(r.num_components) + " connected components (" +
+                            std::to_string(r.components.size()) + " with faces, " +
+                            std::to_string(r.num_unreferenced_vertices) + " unreferenced vertices), e.g. vertex " +
+                            std::to_string(second) + " is not connected to vertex 0; " +
+                            (only_stray ? "remove_unreferenced_vertices() drops the stray vertices"
+                                        : "keep_largest_component() keeps the piece of largest area"));
+  }
+  if (!r.orientable)
+    throw invalid_input(input_error::unsupported_topology, no_index,
+                        pre + "the surface is not orientable (no consistent choice of face orientations exists); "
+                              "no repair can make it a sphere");
+  if (r.genus != 0)
+    throw invalid_input(input_error::unsupported_topology, no_index,
+                        pre + "it has genus " + std::to_string(r.genus) + " (Euler characteristic " +
+                            std::to_string(r.euler_characteristic) +
+                            "); no repair removes handles: use a genus-0 version of the shape");
+  return r;
+}
+
+/// require_closed_genus0_manifold for any SurfaceMesh (gathered into triangle_mesh form).
+/// \throws invalid_input as the matrix overload. Complexity: O(V log V + F log F).
+template <SurfaceMesh Mesh>
+mesh_report require_closed_genus0_manifold(const Mesh& mesh, const char* who) {
+  using S = mesh_scalar_t<Mesh>;
+  if constexpr (std::is_same_v<std::remove_cvref_t<Mesh>, triangle_mesh<S>>) {
+    return require_closed_genus0_manifold(mesh.V, mesh.F, who);
+  } else {
+    const triangle_mesh<S> m = to_triangle_mesh<S>(mesh);
+    return require_closed_genus0_manifold(m.V, m.F, who);
+  }
+}
+
+}  // namespace shapestruct
