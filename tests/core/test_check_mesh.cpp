@@ -87,7 +87,8 @@ TEST_CASE("check_mesh: closed genus-0 fixtures") {
     triangle_mesh<double> mesh;
     index_t v, f, e;
   };
-  const expect cases[] = {{test::tetrahedron(), 4, 4, 6}, {test::octahedron(), 6, 8, 12}, {make_icosphere(2), 162, 320, 480}};
+  const expect cases[] = {
+      {test::tetrahedron(), 4, 4, 6}, {test::octahedron(), 6, 8, 12}, {make_icosphere(2), 162, 320, 480}};
   for (const auto& c : cases) {
     on_both_models(c.mesh, [&](const mesh_report& r) {
       CHECK(r.num_vertices == c.v);

@@ -2,6 +2,8 @@
 // check_mesh: a never-throwing inventory of a mesh's size, topology and defects (for `shapestruct inspect`).
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>  // cross product
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,9 +13,6 @@
 #include <string>
 #include <type_traits>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>  // cross product
 
 #include "shapestruct/core/concepts/surface_mesh.hpp"
 #include "shapestruct/core/triangle_mesh.hpp"
@@ -40,10 +39,10 @@ struct component_report {
   index_t num_edges = 0;
   index_t num_boundary_loops = 0;
   index_t euler_characteristic = 0;  ///< V - E + F of the component
-  bool manifold = true;    ///< no non-manifold edge or vertex and no face repeating a vertex
-  bool orientable = true;  ///< faces can be oriented consistently (meaningful when manifold)
-  index_t genus = -1;      ///< (2 - chi - b) / 2 for manifold orientable components, else -1
-  double area = 0;         ///< sum of the areas of its faces with finite corners
+  bool manifold = true;              ///< no non-manifold edge or vertex and no face repeating a vertex
+  bool orientable = true;            ///< faces can be oriented consistently (meaningful when manifold)
+  index_t genus = -1;                ///< (2 - chi - b) / 2 for manifold orientable components, else -1
+  double area = 0;                   ///< sum of the areas of its faces with finite corners
 };
 
 /// Everything check_mesh() found. Counts are complete; the *_examples lists hold at most
@@ -85,8 +84,8 @@ struct mesh_report {
   /// Non-empty when the input matrices do not have 3 columns; nothing else is then filled in.
   std::string shape_problem;
 
-  std::vector<component_report> components;  ///< components with faces, by first_vertex
-  std::vector<std::array<index_t, 2>> boundary_edge_examples;  ///< (a, b) as traversed by its face
+  std::vector<component_report> components;                        ///< components with faces, by first_vertex
+  std::vector<std::array<index_t, 2>> boundary_edge_examples;      ///< (a, b) as traversed by its face
   std::vector<std::array<index_t, 2>> non_manifold_edge_examples;  ///< (min, max)
   std::vector<std::array<index_t, 2>> inconsistent_edge_examples;  ///< (min, max)
   std::vector<index_t> non_manifold_vertex_examples;
@@ -272,7 +271,8 @@ template <class Scalar>
     ++r.components[static_cast<std::size_t>(comp_of_label[static_cast<std::size_t>(l)])].num_vertices;
   }
   auto comp_of_vertex = [&](index_t v) -> component_report& {
-    return r.components[static_cast<std::size_t>(comp_of_label[static_cast<std::size_t>(label[static_cast<std::size_t>(v)])])];
+    return r.components[static_cast<std::size_t>(
+        comp_of_label[static_cast<std::size_t>(label[static_cast<std::size_t>(v)])])];
   };
   index_t num_topological_faces = 0;
   for (index_t f = 0; f < m; ++f) {
@@ -470,7 +470,9 @@ template <SurfaceMesh Mesh>
 // ---------------------------------------------------------------------------------------------- printing
 
 namespace detail {
-inline std::string yes_no(bool b) { return b ? "yes" : "no"; }
+inline std::string yes_no(bool b) {
+  return b ? "yes" : "no";
+}
 
 inline void print_examples(std::ostringstream& os, const std::vector<index_t>& list, index_t total) {
   if (list.empty()) return;

@@ -2,10 +2,9 @@
 // connected_components: labels the vertices and faces of a mesh by connected piece (union-find).
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "shapestruct/core/concepts/surface_mesh.hpp"
 #include "shapestruct/core/errors.hpp"
@@ -17,7 +16,7 @@ namespace shapestruct {
 
 /// Result of connected_components().
 struct component_labels {
-  index_t count = 0;                ///< number of components, isolated vertices included
+  index_t count = 0;                                       ///< number of components, isolated vertices included
   Eigen::Matrix<index_t, Eigen::Dynamic, 1> vertex_label;  ///< #V, in [0, count)
   Eigen::Matrix<index_t, Eigen::Dynamic, 1> face_label;    ///< #F, the label of the face's vertices
 };

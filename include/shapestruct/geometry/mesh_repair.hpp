@@ -3,13 +3,12 @@
 // piece, fill small holes, drop stray vertices, merge coincident vertices.
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <string>
 #include <type_traits>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "shapestruct/core/concepts/surface_mesh.hpp"
 #include "shapestruct/core/errors.hpp"
@@ -117,7 +116,8 @@ repaired_mesh<Scalar> keep_largest_component_kernel(const Eigen::Ref<const matri
 template <SurfaceMesh Mesh>
 [[nodiscard]] repaired_mesh<mesh_scalar_t<Mesh>> keep_largest_component(const Mesh& mesh) {
   using S = mesh_scalar_t<Mesh>;
-  return detail::on_canonical<S>(mesh, [&](const auto& V, const auto& F) { return keep_largest_component_kernel<S>(V, F); });
+  return detail::on_canonical<S>(mesh,
+                                 [&](const auto& V, const auto& F) { return keep_largest_component_kernel<S>(V, F); });
 }
 
 // ----------------------------------------------------------------------------------- remove_unreferenced
@@ -146,7 +146,8 @@ repaired_mesh<Scalar> remove_unreferenced_vertices_kernel(const Eigen::Ref<const
 template <SurfaceMesh Mesh>
 [[nodiscard]] repaired_mesh<mesh_scalar_t<Mesh>> remove_unreferenced_vertices(const Mesh& mesh) {
   using S = mesh_scalar_t<Mesh>;
-  return detail::on_canonical<S>(mesh, [&](const auto& V, const auto& F) { return remove_unreferenced_vertices_kernel<S>(V, F); });
+  return detail::on_canonical<S>(
+      mesh, [&](const auto& V, const auto& F) { return remove_unreferenced_vertices_kernel<S>(V, F); });
 }
 
 // ---------------------------------------------------------------------------------- merge_duplicate_vertices
@@ -177,7 +178,8 @@ repaired_mesh<Scalar> merge_duplicate_vertices_kernel(const Eigen::Ref<const mat
   for (index_t f = 0; f < F.rows(); ++f) {
     for (int k = 0; k < 3; ++k) Fm(f, k) = rep[static_cast<std::size_t>(F(f, k))];
     // a face with two corners at one point has collapsed to a segment: it carries no surface
-    if (Fm(f, 0) == Fm(f, 1) || Fm(f, 1) == Fm(f, 2) || Fm(f, 0) == Fm(f, 2)) keep_face[static_cast<std::size_t>(f)] = 0;
+    if (Fm(f, 0) == Fm(f, 1) || Fm(f, 1) == Fm(f, 2) || Fm(f, 0) == Fm(f, 2))
+      keep_face[static_cast<std::size_t>(f)] = 0;
   }
   auto out = detail::compact<Scalar>(V, Fm, keep, keep_face);
   for (index_t v = 0; v < n; ++v) out.old_to_new(v) = out.old_to_new(rep[static_cast<std::size_t>(v)]);
@@ -194,7 +196,8 @@ repaired_mesh<Scalar> merge_duplicate_vertices_kernel(const Eigen::Ref<const mat
 template <SurfaceMesh Mesh>
 [[nodiscard]] repaired_mesh<mesh_scalar_t<Mesh>> merge_duplicate_vertices(const Mesh& mesh) {
   using S = mesh_scalar_t<Mesh>;
-  return detail::on_canonical<S>(mesh, [&](const auto& V, const auto& F) { return merge_duplicate_vertices_kernel<S>(V, F); });
+  return detail::on_canonical<S>(
+      mesh, [&](const auto& V, const auto& F) { return merge_duplicate_vertices_kernel<S>(V, F); });
 }
 
 // ----------------------------------------------------------------------------------------- close_small_holes
@@ -222,9 +225,8 @@ hole_filling_result<Scalar> close_small_holes_kernel(const Eigen::Ref<const matr
       const index_t s = F(f, k), t = F(f, (k + 1) % 3);
       edges.push_back({std::min(s, t), std::max(s, t), s, t});
     }
-  std::sort(edges.begin(), edges.end(), [](const dir_edge& a, const dir_edge& b) {
-    return a.lo != b.lo ? a.lo < b.lo : a.hi < b.hi;
-  });
+  std::sort(edges.begin(), edges.end(),
+            [](const dir_edge& a, const dir_edge& b) { return a.lo != b.lo ? a.lo < b.lo : a.hi < b.hi; });
   // next[v] = the end of the boundary edge leaving v (in face orientation)
   std::vector<index_t> next(static_cast<std::size_t>(n), no_index);
   index_t boundary_edges = 0;
@@ -320,7 +322,8 @@ template <SurfaceMesh Mesh>
 [[nodiscard]] hole_filling_result<mesh_scalar_t<Mesh>> close_small_holes(const Mesh& mesh,
                                                                          index_t max_boundary_loop_length) {
   using S = mesh_scalar_t<Mesh>;
-  return detail::on_canonical<S>(mesh, [&](const auto& V, const auto& F) { return close_small_holes_kernel<S>(V, F, max_boundary_loop_length); });
+  return detail::on_canonical<S>(
+      mesh, [&](const auto& V, const auto& F) { return close_small_holes_kernel<S>(V, F, max_boundary_loop_length); });
 }
 
 }  // namespace shapestruct

@@ -1,0 +1,233 @@
+// SPDX-License-Identifier: MIT
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "shapestruct/core/check_mesh.hpp"
+#include "shapestruct/geometry/mesh_repair.hpp"
+#include "support/fixtures.hpp"
+#include "support/legacy_mesh.hpp"
+
+using namespace shapestruct;
+
+namespace {
+
+/// The mesh without the listed faces (vertices kept).
+triangle_mesh<double> without_faces(const triangle_mesh<double>& m, std::vector<index_t> drop) {
+  triangle_mesh<double> out;
+  out.V = m.V;
+  out.F.resize(m.F.rows() - static_cast<index_t>(drop.size()), 3);
+  index_t g = 0;
+  for (index_t f = 0; f < m.F.rows(); ++f)
+    if (std::find(drop.begin(), drop.end(), f) == drop.end()) out.F.row(g++) = m.F.row(f);
+  return out;
+}
+
+/// The faces of m around vertex v.
+std::vector<index_t> faces_around(const triangle_mesh<double>& m, index_t v) {
+  std::vector<index_t> out;
+  for (index_t f = 0; f < m.F.rows(); ++f)
+    if ((m.F.row(f).array() == v).any()) out.push_back(f);
+  return out;
+}
+
+/// Every face with its own three vertices (as an STL file stores it).
+triangle_mesh<double> as_soup(const triangle_mesh<double>& m) {
+  triangle_mesh<double> out;
+  out.V.resize(3 * m.F.rows(), 3);
+  out.F.resize(m.F.rows(), 3);
+  for (index_t f = 0; f < m.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      out.V.row(3 * f + k) = m.V.row(m.F(f, k));
+      out.F(f, k) = 3 * f + k;
+    }
+  return out;
+}
+
+template <class Fn>
+void on_both_models(const triangle_mesh<double>& m, Fn&& fn) {
+  {
+    INFO("model: triangle_mesh<double>");
+    fn(m, 1e-12);
+  }
+  {
+    INFO("model: legacy_mesh");
+    fn(test::to_legacy(m), 1e-6);
+  }
+}
+
+template <class Fn>
+void expect_reason(input_error reason, index_t element, Fn&& fn) {
+  try {
+    fn();
+    FAIL("no throw");
+  } catch (const invalid_input& e) {
+    CHECK(e.reason() == reason);
+    CHECK(e.element() == element);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("keep_largest_component keeps the piece of largest area") {
+  const auto small = test::tetrahedron();  // area ~ 13.9
+  auto big = make_icosphere(1);            // area ~ 12.4 at radius 1: scale to radius 3
+  big.V *= 3.0;
+  triangle_mesh<double> m;
+  // layout: stray vertex 0, tetrahedron 1..4, sphere 5..46
+  m.V.resize(1 + 4 + big.V.rows(), 3);
+  m.V << Eigen::RowVector3d(9, 9, 9), small.V, (big.V.rowwise() + Eigen::RowVector3d(10, 0, 0));
+  m.F.resize(4 + big.F.rows(), 3);
+  m.F << (small.F.array() + 1).matrix(), (big.F.array() + 5).matrix();
+  on_both_models(m, [&](const auto& mesh, double tol) {
+    const auto r = keep_largest_component(mesh);
+    CHECK(r.mesh.V.rows() == big.V.rows());
+    CHECK(r.mesh.F == big.F);
+    CHECK((r.mesh.V.template cast<double>().rowwise() - Eigen::RowVector3d(10, 0, 0) - big.V).cwiseAbs().maxCoeff() <
+          tol * 100);
+    CHECK(r.removed_vertices == 5);
+    CHECK(r.removed_faces == 4);
+    CHECK(r.old_to_new(0) == no_index);
+    CHECK(r.old_to_new(4) == no_index);
+    CHECK(r.old_to_new(5) == 0);
+    CHECK(r.old_to_new(46) == 41);
+    CHECK(check_mesh(r.mesh).is_closed_genus0_manifold());
+  });
+}
+
+TEST_CASE("keep_largest_component: invalid input") {
+  expect_reason(input_error::bad_face, 3, [] { (void)keep_largest_component(test::with_bad_index()); });
+  expect_reason(input_error::non_finite, 2, [] { (void)keep_largest_component(test::with_nan_vertex()); });
+  expect_reason(input_error::empty, no_index, [] { (void)keep_largest_component(triangle_mesh<double>{}); });
+}
+
+TEST_CASE("close_small_holes fills a triangle hole with one face") {
+  const auto ico = make_icosphere(1);
+  on_both_models(without_faces(ico, {7}), [&](const auto& mesh, double) {
+    const auto r = close_small_holes(mesh, 3);
+    CHECK(r.holes_filled == 1);
+    CHECK(r.holes_left == 0);
+    CHECK(r.added_vertices == 0);
+    CHECK(r.added_faces == 1);
+    const auto rep = check_mesh(r.mesh);
+    CHECK(rep.is_closed_genus0_manifold());
+    CHECK(rep.num_inconsistent_edges == 0);
+  });
+}
+
+TEST_CASE("close_small_holes fills a larger hole with a centroid fan, keeping existing indices") {
+  const auto ico = make_icosphere(1);
+  const auto fan = faces_around(ico, 20);  // a valence-6 vertex of the subdivided icosahedron
+  REQUIRE(fan.size() == 6);
+  const auto holed = without_faces(ico, fan);
+  on_both_models(holed, [&](const auto& mesh, double tol) {
+    SUBCASE("long enough limit") {
+      const auto r = close_small_holes(mesh, 6);
+      CHECK(r.holes_filled == 1);
+      CHECK(r.added_vertices == 1);
+      CHECK(r.added_faces == 6);
+      CHECK(r.mesh.F.topRows(holed.F.rows()) == holed.F);
+      CHECK((r.mesh.V.topRows(holed.V.rows()).template cast<double>() - holed.V).cwiseAbs().maxCoeff() < tol);
+      const auto rep = check_mesh(r.mesh);
+      CHECK(rep.num_boundary_edges == 0);
+      CHECK(rep.num_inconsistent_edges == 0);
+      // vertex 20 is now unreferenced, the rest is a closed sphere
+      CHECK(rep.num_unreferenced_vertices == 1);
+      CHECK(rep.genus == 0);
+      CHECK(rep.components.size() == 1);
+      // the new vertex is the centroid of the ring around vertex 20
+      Eigen::RowVector3d c = Eigen::RowVector3d::Zero();
+      for (const index_t f : fan)
+        for (int k = 0; k < 3; ++k)
+          if (ico.F(f, k) != 20) c += ico.V.row(ico.F(f, k)) / 12.0;  // each ring vertex appears twice
+      CHECK((r.mesh.V.row(holed.V.rows()).template cast<double>() - c).norm() < tol * 10);
+    }
+    SUBCASE("too short a limit leaves the hole") {
+      const auto r = close_small_holes(mesh, 5);
+      CHECK(r.holes_filled == 0);
+      CHECK(r.holes_left == 1);
+      CHECK(r.longest_loop_left == 6);
+      CHECK(r.mesh.F.rows() == holed.F.rows());
+    }
+  });
+}
+
+TEST_CASE("close_small_holes turns a disk into a sphere") {
+  on_both_models(make_disk(2, 10), [](const auto& mesh, double) {
+    const auto r = close_small_holes(mesh, 10);
+    CHECK(r.holes_filled == 1);
+    CHECK(check_mesh(r.mesh).is_closed_genus0_manifold());
+  });
+}
+
+TEST_CASE("close_small_holes: invalid input") {
+  expect_reason(input_error::bad_parameter, no_index, [] { (void)close_small_holes(make_disk(1, 5), 2); });
+  expect_reason(input_error::non_manifold, 0, [] { (void)close_small_holes(test::bowtie(), 10); });
+  expect_reason(input_error::bad_face, 3, [] { (void)close_small_holes(test::with_bad_index(), 10); });
+  expect_reason(input_error::non_finite, 2, [] { (void)close_small_holes(test::with_nan_vertex(), 10); });
+  expect_reason(input_error::empty, no_index, [] { (void)close_small_holes(triangle_mesh<double>{}, 10); });
+}
+
+TEST_CASE("remove_unreferenced_vertices drops stray vertices and renumbers") {
+  const auto oct = test::octahedron();
+  // strays at new indices 0 and 4: old vertex i maps to i + 1 (i < 3) or i + 2 (i >= 3)
+  triangle_mesh<double> m;
+  m.V.resize(8, 3);
+  m.V << Eigen::RowVector3d(7, 7, 7), oct.V.topRows(3), Eigen::RowVector3d(8, 8, 8), oct.V.bottomRows(3);
+  m.F = oct.F;
+  for (index_t f = 0; f < m.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) m.F(f, k) += m.F(f, k) < 3 ? 1 : 2;
+  on_both_models(m, [&](const auto& mesh, double tol) {
+    const auto r = remove_unreferenced_vertices(mesh);
+    CHECK(r.removed_vertices == 2);
+    CHECK(r.removed_faces == 0);
+    CHECK(r.mesh.F == oct.F);
+    CHECK((r.mesh.V.template cast<double>() - oct.V).cwiseAbs().maxCoeff() < tol);
+    CHECK(r.old_to_new(0) == no_index);
+    CHECK(r.old_to_new(4) == no_index);
+    CHECK(r.old_to_new(5) == 3);
+  });
+}
+
+TEST_CASE("remove_unreferenced_vertices: invalid input") {
+  expect_reason(input_error::bad_face, 3, [] { (void)remove_unreferenced_vertices(test::with_bad_index()); });
+  // non-finite stray vertices are simply dropped
+  auto m = test::octahedron();
+  m.V.conservativeResize(7, 3);
+  m.V.row(6).setConstant(std::numeric_limits<double>::quiet_NaN());
+  const auto r = remove_unreferenced_vertices(m);
+  CHECK(r.mesh.V.rows() == 6);
+  CHECK(r.mesh.V.allFinite());
+}
+
+TEST_CASE("merge_duplicate_vertices welds a triangle soup back into a sphere") {
+  const auto oct = test::octahedron();
+  auto soup = as_soup(oct);
+  // one extra face whose corners 0 and 1 are both copies of octahedron vertex 0: it collapses
+  soup.V.conservativeResize(soup.V.rows() + 3, 3);
+  soup.V.bottomRows(3) << oct.V.row(0), oct.V.row(0), oct.V.row(2);
+  soup.F.conservativeResize(soup.F.rows() + 1, 3);
+  soup.F.row(soup.F.rows() - 1) << 24, 25, 26;
+  REQUIRE(check_mesh(soup).num_boundary_edges == 24 + 3);
+  on_both_models(soup, [&](const auto& mesh, double) {
+    const auto r = merge_duplicate_vertices(mesh);
+    CHECK(r.mesh.V.rows() == 6);
+    CHECK(r.mesh.F.rows() == 8);
+    CHECK(r.removed_faces == 1);
+    CHECK(r.removed_vertices == 27 - 6);
+    CHECK(r.old_to_new(24) == r.old_to_new(25));
+    // soup vertex 3 f + k is octahedron vertex F(f, k); merged copies all map to one new index
+    for (index_t f = 0; f < oct.F.rows(); ++f)
+      for (int k = 0; k < 3; ++k) CHECK(r.mesh.F(f, k) == r.old_to_new(3 * f + k));
+    const auto rep = check_mesh(r.mesh);
+    CHECK(rep.is_closed_genus0_manifold());
+    CHECK(rep.num_duplicate_vertices == 0);
+  });
+}
+
+TEST_CASE("merge_duplicate_vertices: invalid input") {
+  expect_reason(input_error::non_finite, 2, [] { (void)merge_duplicate_vertices(test::with_nan_vertex()); });
+  expect_reason(input_error::bad_face, 3, [] { (void)merge_duplicate_vertices(test::with_bad_index()); });
+  expect_reason(input_error::empty, no_index, [] { (void)merge_duplicate_vertices(triangle_mesh<double>{}); });
+}
