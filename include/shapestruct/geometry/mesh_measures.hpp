@@ -65,7 +65,8 @@ template <class Scalar>
     detail::geometry_corners(V, F, f, a, b, c);
     const vec3<Scalar> n = (b - a).cross(c - a);
     const Scalar len = n.norm();
-    N.row(f) = len > Scalar(0) ? (n / len).transpose() : vec3<Scalar>::Zero().transpose();
+    if (len > Scalar(0)) N.row(f) = (n / len).transpose();
+    else N.row(f).setZero();
   }
   return N;
 }
