@@ -24,12 +24,13 @@ namespace shapestruct {
 /// Graph geodesics: exact shortest-path distances in the mesh's edge graph (edge weight = Euclidean length).
 ///
 /// Accuracy: paths are restricted to edges, so these distances OVERESTIMATE the true surface geodesic
-/// distance, by a factor that does not vanish under refinement (on a regular triangulation it tends to the
-/// ratio of the zig-zag to the straight path, up to ~1.08 on a regular grid depending on direction; on the
-/// unit icosphere of level 5 the mean relative error against exact great-circle distances is measured at
-/// 7.1%, against 0.74% for the heat method, see tests/geometry/test_heat_geodesics.cpp). The heat method (heat_geodesics.hpp) is closer to the true geodesic
-/// on well-shaped meshes; Dijkstra is exact on the graph, never NaN, needs no factorisation and is robust to
-/// slivers, which is why the blended-maps pipeline uses it for feature points and AGD.
+/// distance, by a direction-dependent factor that does not vanish under refinement (on a square grid split
+/// along one diagonal: 1 along the axes and the diagonal, up to sqrt(2) across it). On the unit icosphere of
+/// level 5 the mean relative error against exact great-circle distances is measured at 7.1%, against 0.74%
+/// for the heat method (tests/geometry/test_heat_geodesics.cpp): the heat method (heat_geodesics.hpp) is
+/// closer to the true geodesic on well-shaped meshes. Dijkstra is exact on the graph, never NaN, needs no
+/// factorisation and is robust to slivers, which is why the blended-maps pipeline uses it for feature points
+/// and AGD.
 ///
 /// Built once per mesh (it copies the CSR graph into a packed adjacency array); all queries are const and
 /// may run concurrently from several threads. Vertices not connected to any source get +infinity.
