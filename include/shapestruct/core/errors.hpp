@@ -99,10 +99,11 @@ class io_error : public std::runtime_error {
  private:
   static std::string compose(const std::string& path, std::int64_t line, std::int64_t offset,
                              const std::string& problem) {
+    // Appends piece by piece: `"literal" + std::string` here trips g++ 12's false -Wrestrict (GCC bug 105651).
     std::string where = path.empty() ? std::string("<memory>") : path;
-    if (line > 0) where += ":" + std::to_string(line);
-    else if (offset > 0) where += ": byte " + std::to_string(offset);
-    return where + ": " + problem;
+    if (line > 0) where.append(":").append(std::to_string(line));
+    else if (offset > 0) where.append(": byte ").append(std::to_string(offset));
+    return where.append(": ").append(problem);
   }
 
   file_error reason_;

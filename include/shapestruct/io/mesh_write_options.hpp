@@ -24,7 +24,7 @@ namespace shapestruct {
 struct mesh_write_options {
   /// `#V x 3` RGB colours written per vertex (OFF: COFF, OBJ: `v x y z r g b`, PLY: uchar red/green/blue);
   /// empty for none. STL has no vertex colours: they are ignored there.
-  Eigen::Matrix<std::uint8_t, Eigen::Dynamic, 3> vertex_colors;
+  Eigen::Matrix<std::uint8_t, Eigen::Dynamic, 3> vertex_colors{};
   /// PLY and STL: write the binary variant (smaller, faster, exact floats) instead of ASCII.
   bool binary = false;
   /// Binary PLY byte order (binary STL is always little-endian by definition).

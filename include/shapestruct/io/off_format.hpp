@@ -2,6 +2,7 @@
 // off_format: reading and writing Geomview OFF files (OFF, COFF, NOFF, CNOFF, STOFF, ... with polygons).
 #pragma once
 
+#include <cctype>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -63,7 +64,8 @@ inline void next_header_token(text_scanner& sc, const char* what) {
 
   bool has_color = false, has_normal = false;
   std::string_view first = sc.token();
-  const bool keyword_less = !first.empty() && (std::isdigit(static_cast<unsigned char>(first[0])) != 0);
+  const bool keyword_less = !(first.size() >= 3 && first.substr(first.size() - 3) == "OFF") && !first.empty() &&
+                            (std::isdigit(static_cast<unsigned char>(first[0])) != 0);
   if (!keyword_less) {
     std::string_view kw = first;
     if (kw.size() < 3 || kw.substr(kw.size() - 3) != "OFF")
@@ -75,16 +77,9 @@ inline void next_header_token(text_scanner& sc, const char* what) {
     if (kw == "4" || kw == "n" || kw == "4n")
       sc.fail(file_error::unsupported, "'" + std::string(first) + "' (4D or n-dimensional OFF) is not supported, only 3D");
     if (!kw.empty()) sc.fail(file_error::syntax, "unknown OFF keyword '" + text_scanner::clip(first) + "'");
-    if (!sc.at_line_end()) {
-      const char* save = sc.position();
-      std::string_view next = sc.token();
-      if (next == "BINARY") sc.fail(file_error::unsupported, "binary OFF is not supported, only ASCII OFF");
-      (void)save;
-      // Anything else on the keyword line must be the counts: re-parse it below.
-      if (!next.empty()) first = next;
-    } else {
-      first = {};
-    }
+    // Anything else on the keyword line must be the counts.
+    first = sc.token();
+    if (first == "BINARY") sc.fail(file_error::unsupported, "binary OFF is not supported, only ASCII OFF");
   }
   // The vertex count is `first` when it was already consumed on the keyword line.
   std::int64_t nv = 0;
@@ -100,13 +95,13 @@ inline void next_header_token(text_scanner& sc, const char* what) {
   if (nv < 0 || nf < 0)
     sc.fail(file_error::bad_value, "negative count in the header (" + std::to_string(nv) + " vertices, " +
                                        std::to_string(nf) + " faces)");
-  sc.skip_rest_of_line();
   // Cheapest possible records: "0 0 0\n" (6 bytes) per vertex, "0\n" (2 bytes) per face. Anything more
   // than the remaining bytes could hold is rejected before V is allocated.
   const std::int64_t rem = static_cast<std::int64_t>(sc.remaining()) + 1;
   if (nv > rem / 6 || nf > (rem - 6 * nv) / 2)
     sc.fail(file_error::too_large, "the header announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
                                        " faces, more than the remaining " + std::to_string(rem - 1) + " bytes can hold");
+  sc.skip_rest_of_line();
 
   mesh_file<double> out;
   out.mesh.V.resize(nv, 3);
