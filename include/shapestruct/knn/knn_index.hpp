@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -154,11 +155,11 @@ class knn_index {
     knn_result<Scalar> out;
     const index_t kk = std::min(k, size());
     if (kk == 0) return out;
-    std::vector<std::uint32_t> ids(static_cast<std::size_t>(kk));
-    out.sq_distances.resize(static_cast<std::size_t>(kk));
-    const index_t found = knn_raw(p, kk, ids.data(), out.sq_distances.data());
-    out.indices.assign(ids.begin(), ids.begin() + found);
-    out.sq_distances.resize(static_cast<std::size_t>(found));
+    with_buffers(kk, [&](std::uint32_t* ids, Scalar* d) {
+      const index_t found = knn_raw(p, kk, ids, d);
+      out.indices.assign(ids, ids + found);
+      out.sq_distances.assign(d, d + found);
+    });
     return out;
   }
 
@@ -235,15 +236,14 @@ class knn_index {
     out.sq_distances.setConstant(Q.rows(), kk, std::numeric_limits<Scalar>::infinity());
     if (kk == 0) return out;
     detail::knn_parallel_for(Q.rows(), workers, [&](index_t i) {
-      // Small fixed buffers per query; kk is at most the point count and typically tiny.
-      std::vector<std::uint32_t> ids(static_cast<std::size_t>(kk));
-      std::vector<Scalar> d(static_cast<std::size_t>(kk));
       const point_type p = Q.row(i).transpose();
-      const index_t found = knn_raw(p, kk, ids.data(), d.data());
-      for (index_t j = 0; j < found; ++j) {
-        out.indices(i, j) = static_cast<index_t>(ids[static_cast<std::size_t>(j)]);
-        out.sq_distances(i, j) = d[static_cast<std::size_t>(j)];
-      }
+      with_buffers(kk, [&](std::uint32_t* ids, Scalar* d) {
+        const index_t found = knn_raw(p, kk, ids, d);
+        for (index_t j = 0; j < found; ++j) {
+          out.indices(i, j) = static_cast<index_t>(ids[j]);
+          out.sq_distances(i, j) = d[j];
+        }
+      });
     });
     return out;
   }
@@ -356,6 +356,22 @@ class knn_index {
     if (k < 1)
       throw invalid_input(input_error::bad_parameter, no_index,
                           std::string(who) + ": k must be >= 1, got " + std::to_string(k));
+  }
+
+  // Calls f(ids, dists) with scratch buffers of k entries: on the stack for the common small k (a heap
+  // allocation per query would cost about as much as the search itself at 10K points).
+  template <class F>
+  static void with_buffers(index_t k, F&& f) {
+    constexpr index_t stack_k = 64;
+    if (k <= stack_k) {
+      std::array<std::uint32_t, stack_k> ids;
+      std::array<Scalar, stack_k> d;
+      f(ids.data(), d.data());
+    } else {
+      std::vector<std::uint32_t> ids(static_cast<std::size_t>(k));
+      std::vector<Scalar> d(static_cast<std::size_t>(k));
+      f(ids.data(), d.data());
+    }
   }
 
   index_t knn_raw(const point_type& p, index_t k, std::uint32_t* ids, Scalar* d) const {
