@@ -82,7 +82,11 @@ class ply_ascii_source {
   explicit ply_ascii_source(text_scanner& sc) : sc_(sc) {}
   [[noreturn]] void fail(file_error r, const std::string& problem) const { sc_.fail(r, problem); }
   [[nodiscard]] std::size_t remaining() const { return sc_.remaining(); }
-  [[nodiscard]] std::int64_t where() const { return sc_.line(); }
+  /// The line of the next value (moving past line ends first, so a record is reported where it starts).
+  [[nodiscard]] std::int64_t where() {
+    (void)sc_.next_content_line();
+    return sc_.line();
+  }
 
   double value(ply_type t, const char* what) {
     const std::string_view tok = next(what);
