@@ -1,0 +1,307 @@
+// SPDX-License-Identifier: MIT
+// blended_matcher: blended intrinsic maps between two closed genus-0 surfaces (dissertation ch. 3).
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "shapestruct/blended/area_confidence.hpp"
+#include "shapestruct/blended/blended_shape.hpp"
+#include "shapestruct/blended/detail/parallel_for.hpp"
+#include "shapestruct/blended/geodesic_consistency.hpp"
+#include "shapestruct/blended/triplet_candidates.hpp"
+#include "shapestruct/core/concepts/surface_mesh.hpp"
+#include "shapestruct/core/status.hpp"
+#include "shapestruct/core/triangle_mesh.hpp"
+#include "shapestruct/maps/surface_map.hpp"
+#include "shapestruct/spectral/top_eigenpairs.hpp"
+
+namespace shapestruct {
+
+/// Options of blended_matcher (dissertation ch. 3 defaults).
+struct blended_matcher_options {
+  blended_shape_options shape{};  ///< per-shape precomputation (samples, features, repairs)
+  /// Eigenvectors of S~ whose eigenvalue is at least this fraction of the top one are processed ("within 75% of
+  /// the top eigenvalue", ch. 3.3.4, read as lambda_k >= 0.75 lambda_1).
+  double eigenvalue_fraction = 0.75;
+  index_t max_eigenvectors = 6;  ///< at most this many eigenvectors (the spectral gap usually leaves 1-3)
+  /// Maps whose |entry| in an eigenvector is at least this fraction of the eigenvector's largest |entry| are
+  /// the "high entries" that are grouped; the others get weight 0.
+  double entry_fraction = 0.25;
+  index_t min_group_size = 2;  ///< smaller groups are dropped (unless no group is this large)
+  index_t max_groups = 8;      ///< blended maps built and scored, largest eigen-weight first
+  int threads = 0;             ///< std::threads, 0 = all cores; the result does not depend on it
+  /// Progress callback (stage name, seconds spent in it); the library never prints.
+  std::function<void(const std::string&, double)> on_stage{};
+};
+
+/// One group of consistent candidate maps (binary weights) and the blended map it defines.
+template <class Scalar = double>
+struct blended_candidate {
+  std::vector<index_t> maps;   ///< indices into blended_match_result::candidates
+  Scalar eigen_weight = 0;     ///< sum of |eigenvector entries| of the group's maps
+  Scalar score = 0;            ///< integrated area preservation of the blended map, in [0, 1] (higher is better)
+  surface_map<Scalar> map;     ///< the blended map (source vertices -> target surface points)
+};
+
+/// Result of blended_matcher::match. Models MatchResult.
+template <class Scalar = double>
+struct blended_match_result {
+  surface_map<Scalar> map;                          ///< the selected blended map (highest score)
+  status info = status::ok;                         ///< not_converged if the eigen-solver did not converge
+  std::vector<candidate_map<Scalar>> candidates;    ///< all candidate conformal maps m_i
+  matrix_x<Scalar> confidence;                      ///< (#candidates x #samples) c_i(p)
+  vector_x<Scalar> eigenvalues;                     ///< leading eigenvalues of S~ (descending)
+  std::vector<blended_candidate<Scalar>> blended;   ///< every blended map built, with its score
+  index_t selected = no_index;                      ///< index of the selected blended map in `blended`
+  std::vector<std::pair<std::string, double>> timings;  ///< seconds per stage
+};
+
+/// Blended intrinsic maps (Kim, Lipman & Funkhouser 2011; dissertation ch. 3) with swappable policies:
+///   Candidates(a, b)                    -> std::vector<candidate_map>          (triplet_candidates)
+///   Confidence(a, b, maps, threads)     -> (#maps x #samples) c_i(p)           (area_confidence)
+///   Consistency(a, b, maps, c, threads) -> sparse symmetric S~                 (geodesic_consistency)
+/// Pipeline: candidates -> confidences -> S~ -> top eigenvectors (Spectra) -> groups of non-conflicting maps
+/// with binary weights -> one blended map per group, f(p) = closest point on the target to the confidence-weighted
+/// centroid of the candidate images (ch. 3.3.5) -> the blended map that preserves area best overall.
+/// Symmetric flips: a flipped near-isometry forms its own group (its maps conflict with the true ones), so it is
+/// scored separately and loses on integrated area preservation (feet, knees, buttocks distort more).
+/// Models PairwiseMatcher. Per-shape work is in blended_shape: prepare() each shape once and call match() on
+/// the prepared shapes to match one shape against many.
+template <class Candidates = triplet_candidates, class Confidence = area_confidence,
+          class Consistency = geodesic_consistency>
+class blended_matcher {
+ public:
+  using scalar_type = double;
+
+  blended_matcher() = default;
+  explicit blended_matcher(blended_matcher_options options, Candidates candidates = {}, Confidence confidence = {},
+                           Consistency consistency = {})
+      : options_(std::move(options)),
+        candidates_(std::move(candidates)),
+        confidence_(std::move(confidence)),
+        consistency_(std::move(consistency)) {}
+
+  [[nodiscard]] const blended_matcher_options& options() const noexcept { return options_; }
+
+  /// The per-shape precomputation with this matcher's options. \throws invalid_input as blended_shape.
+  template <SurfaceMesh Mesh>
+  [[nodiscard]] blended_shape<double> prepare(const Mesh& mesh) const {
+    auto o = options_.shape;
+    o.threads = options_.threads;
+    return make_blended_shape(mesh, o);
+  }
+
+  /// Matches the vertices of `a` to the surface of `b` (PairwiseMatcher). Prepares both shapes first.
+  /// \throws invalid_input as blended_shape (topology, repairs, parameters).
+  template <SurfaceMesh Src, SurfaceMesh Tgt>
+  [[nodiscard]] blended_match_result<double> match(const Src& a, const Tgt& b) const {
+    const auto t0 = clock::now();
+    const auto sa = prepare(a);
+    const auto sb = prepare(b);
+    auto r = match(sa, sb);
+    r.timings.insert(r.timings.begin(), {"preprocess", seconds(t0)});
+    return r;
+  }
+
+  /// Matches two prepared shapes; output maps use the input meshes' vertex numbering.
+  /// Complexity: dominated by the consistency matrix, O(pairs * samples * log F / threads).
+  [[nodiscard]] blended_match_result<double> match(const blended_shape<double>& a,
+                                                   const blended_shape<double>& b) const {
+    using Scalar = double;
+    blended_match_result<Scalar> out;
+    auto stage = [&](const char* name, clock::time_point since) {
+      const double s = seconds(since);
+      out.timings.emplace_back(name, s);
+      if (options_.on_stage) options_.on_stage(name, s);
+    };
+    auto t = clock::now();
+    out.candidates = candidates_(a, b);
+    stage("candidates", t);
+    const index_t K = static_cast<index_t>(out.candidates.size());
+    if (K == 0) {
+      // Fewer than three features on a side: no conformal candidate exists. Fall back to the identity of the
+      // flattenings, which is still a valid (if poor) conformal map.
+      candidate_map<Scalar> c;
+      out.candidates.push_back(c);
+    }
+    t = clock::now();
+    out.confidence = confidence_(a, b, out.candidates, options_.threads);
+    stage("confidence", t);
+    t = clock::now();
+    const Eigen::SparseMatrix<Scalar> S = consistency_(a, b, out.candidates, out.confidence, options_.threads);
+    stage("consistency", t);
+    t = clock::now();
+    const index_t n = S.rows();
+    const index_t nev = std::min<index_t>(std::max<index_t>(options_.max_eigenvectors, 1), n);
+    const auto eig = top_eigenpairs(S, nev);
+    out.info = eig.info;
+    out.eigenvalues = eig.values;
+    std::vector<group> groups = make_groups(out.candidates, eig);
+    stage("eigenvectors", t);
+    t = clock::now();
+    for (const auto& g : groups) {
+      blended_candidate<Scalar> bc;
+      bc.maps = g.maps;
+      bc.eigen_weight = g.weight;
+      blend(a, b, out, bc);
+      out.blended.push_back(std::move(bc));
+    }
+    index_t best = 0;
+    for (index_t g = 1; g < static_cast<index_t>(out.blended.size()); ++g)
+      if (out.blended[static_cast<std::size_t>(g)].score > out.blended[static_cast<std::size_t>(best)].score) best = g;
+    out.selected = best;
+    out.map = out.blended[static_cast<std::size_t>(best)].map;
+    stage("blending", t);
+    return out;
+  }
+
+ private:
+  using clock = std::chrono::steady_clock;
+  static double seconds(clock::time_point since) { return std::chrono::duration<double>(clock::now() - since).count(); }
+
+  struct group {
+    std::vector<index_t> maps;
+    double weight = 0;
+  };
+
+  /// Ch. 3.3.4 "Processing eigenvectors": eigenvectors within the eigenvalue fraction; in each, the high
+  /// entries (by |entry|, descending) join the first group they do not conflict with, or start a new one.
+  std::vector<group> make_groups(const std::vector<candidate_map<double>>& maps, const eigenpairs_result<double>& eig) const {
+    std::vector<group> groups;
+    std::vector<char> used(maps.size(), 0);
+    const index_t ne = eig.values.size();
+    if (ne == 0 || eig.vectors.cols() == 0) {
+      groups.push_back({{0}, 1.0});
+      return groups;
+    }
+    const double top = eig.values[0];
+    for (index_t e = 0; e < ne && e < eig.vectors.cols(); ++e) {
+      if (e > 0 && !(eig.values[e] >= options_.eigenvalue_fraction * top)) break;
+      const auto w = eig.vectors.col(e);
+      const double wmax = w.cwiseAbs().maxCoeff();
+      if (!(wmax > 0)) continue;
+      std::vector<index_t> high;
+      for (index_t i = 0; i < w.size(); ++i)
+        if (std::abs(w[i]) >= options_.entry_fraction * wmax) high.push_back(i);
+      std::stable_sort(high.begin(), high.end(), [&](index_t x, index_t y) { return std::abs(w[x]) > std::abs(w[y]); });
+      for (index_t i : high) {
+        if (used[static_cast<std::size_t>(i)]) continue;
+        used[static_cast<std::size_t>(i)] = 1;
+        bool placed = false;
+        for (auto& g : groups) {
+          bool ok = true;
+          for (index_t j : g.maps)
+            if (maps[static_cast<std::size_t>(i)].conflicts_with(maps[static_cast<std::size_t>(j)])) {
+              ok = false;
+              break;
+            }
+          if (ok) {
+            g.maps.push_back(i);
+            g.weight += std::abs(w[i]);
+            placed = true;
+            break;
+          }
+        }
+        if (!placed) groups.push_back({{i}, std::abs(w[i])});
+      }
+    }
+    std::stable_sort(groups.begin(), groups.end(), [](const group& x, const group& y) { return x.weight > y.weight; });
+    std::vector<group> kept;
+    for (const auto& g : groups)
+      if (static_cast<index_t>(g.maps.size()) >= options_.min_group_size) kept.push_back(g);
+    if (kept.empty() && !groups.empty()) kept.push_back(groups.front());
+    if (static_cast<index_t>(kept.size()) > options_.max_groups) kept.resize(static_cast<std::size_t>(options_.max_groups));
+    for (auto& g : kept) std::sort(g.maps.begin(), g.maps.end());
+    return kept;
+  }
+
+  /// Ch. 3.3.5: f(p) = projection onto the target of sum_i c_i(p) m_i(p) / sum_i c_i(p) over the group (binary
+  /// weights), c_i interpolated from the samples; then the blended map's own area preservation as its score.
+  void blend(const blended_shape<double>& a, const blended_shape<double>& b, const blended_match_result<double>& r,
+             blended_candidate<double>& bc) const {
+    using Scalar = double;
+    const auto& Va = a.mesh().V;
+    const auto& Fa = a.mesh().F;
+    const auto& Vb = b.mesh().V;
+    const auto& Fb = b.mesh().F;
+    const index_t nv = Va.rows();
+    const auto& fa = a.flattening();
+    const auto& fb = b.flattening();
+    const auto& idx = a.interpolation_index();
+    const auto& wts = a.interpolation_weight();
+    std::vector<surface_point<Scalar>> pts(static_cast<std::size_t>(nv));
+    matrix_x3<Scalar> img(nv, 3);
+    detail::blended_parallel_for(nv, options_.threads, [&](index_t v) {
+      const auto z = fa.coordinate(v);
+      vec3<Scalar> acc = vec3<Scalar>::Zero();
+      Scalar wsum = 0, best_c = -1;
+      vec3<Scalar> best_p = vec3<Scalar>::Zero();
+      for (index_t i : bc.maps) {
+        Scalar c = 0;
+        for (index_t k = 0; k < idx.cols(); ++k) c += wts(v, k) * r.confidence(i, idx(v, k));
+        const auto q = fb.locate(r.candidates[static_cast<std::size_t>(i)].transform(z));
+        const vec3<Scalar> p = q.position(Vb, Fb);
+        if (c > best_c) {
+          best_c = c;
+          best_p = p;
+        }
+        acc += c * p;
+        wsum += c;
+      }
+      const vec3<Scalar> centroid = wsum > Scalar(1e-12) ? vec3<Scalar>(acc / wsum) : best_p;
+      const auto hit = b.closest_points().query(centroid);
+      pts[static_cast<std::size_t>(v)] = hit.location;
+      img.row(v) = hit.point.transpose();
+    });
+    // Score: area-weighted mean of 2 / (r + 1/r) over the source faces, r = image area / face area (both unit).
+    Scalar score = 0;
+    for (index_t f = 0; f < Fa.rows(); ++f) {
+      const vec3<Scalar> a0 = Va.row(Fa(f, 0)), a1 = Va.row(Fa(f, 1)), a2 = Va.row(Fa(f, 2));
+      const vec3<Scalar> b0 = img.row(Fa(f, 0)), b1 = img.row(Fa(f, 1)), b2 = img.row(Fa(f, 2));
+      const Scalar A = Scalar(0.5) * (a1 - a0).cross(a2 - a0).norm();
+      const Scalar B = Scalar(0.5) * (b1 - b0).cross(b2 - b0).norm();
+      if (!(A > 0)) continue;
+      const Scalar ratio = B / A;
+      score += ratio > 0 ? A * Scalar(2) / (ratio + Scalar(1) / ratio) : Scalar(0);
+    }
+    bc.score = score;
+    // Back to the input numbering (repairs may have renumbered or added vertices).
+    const index_t n_out = a.original_size();
+    bc.map.points.assign(static_cast<std::size_t>(n_out), surface_point<Scalar>{});
+    bc.map.nearest.assign(static_cast<std::size_t>(n_out), no_index);
+    for (index_t v = 0; v < n_out; ++v) {
+      const index_t iv = a.internal_vertex(v);
+      if (iv == no_index) continue;
+      const auto& p = pts[static_cast<std::size_t>(iv)];
+      if (!p.valid()) continue;
+      // Report the nearest ORIGINAL target vertex (a hole-filling vertex has no original id).
+      index_t best = no_index;
+      Scalar bw = -1;
+      for (int k = 0; k < 3; ++k) {
+        const index_t tv = b.original_vertex(Fb(p.face, k));
+        if (tv != no_index && p.bary[k] > bw) {
+          bw = p.bary[k];
+          best = tv;
+        }
+      }
+      bc.map.points[static_cast<std::size_t>(v)] = p;
+      bc.map.nearest[static_cast<std::size_t>(v)] = best;
+    }
+  }
+
+  blended_matcher_options options_{};
+  Candidates candidates_{};
+  Confidence confidence_{};
+  Consistency consistency_{};
+};
+
+}  // namespace shapestruct

@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: MIT
+// blended_shape: everything blended intrinsic maps need from one shape, computed once and reused for every pair.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "shapestruct/blended/detail/parallel_for.hpp"
+#include "shapestruct/conformal/mid_edge_flattening.hpp"
+#include "shapestruct/core/concepts/surface_mesh.hpp"
+#include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/triangle_mesh.hpp"
+#include "shapestruct/core/types.hpp"
+#include "shapestruct/core/validate.hpp"
+#include "shapestruct/geometry/closest_point_query.hpp"
+#include "shapestruct/geometry/dijkstra_geodesics.hpp"
+#include "shapestruct/geometry/farthest_point_sampling.hpp"
+#include "shapestruct/geometry/average_geodesic_distance.hpp"
+#include "shapestruct/geometry/mesh_measures.hpp"
+#include "shapestruct/geometry/mesh_repair.hpp"
+
+namespace shapestruct {
+
+/// Options of the per-shape precomputation (dissertation ch. 3.3 defaults).
+struct blended_shape_options {
+  /// |P_even|: evenly spread (geodesic farthest-point) samples where confidence and consistency are evaluated.
+  index_t num_samples = 256;
+  /// Cap on the AGD-maxima feature points, strongest (highest AGD) first. The chapter reports |P| <= 10 on
+  /// most shapes; the number of candidate maps grows as |P|^6.
+  index_t max_features = 10;
+  /// Suppression radius of the AGD maxima in units of sqrt(area); bumps narrower than this are not features.
+  double feature_radius = 0.1;
+  /// Samples used to interpolate a per-sample quantity to a vertex (Gaussian weights, eq. 3.2's "smooth
+  /// interpolation"); the Gaussian width is the sampling's covering radius.
+  index_t interpolation_samples = 6;
+  /// Repairs, off by default (the matcher refuses meshes that are not closed genus-0 manifolds otherwise):
+  bool close_small_holes = false;    ///< fill boundary loops of at most max_hole_edges edges
+  index_t max_hole_edges = 64;
+  bool keep_largest_component = false;  ///< drop all but the largest connected component
+  mid_edge_flattening_options flattening{};
+  int threads = 0;  ///< std::threads for the geodesic tables, 0 = all cores; results do not depend on it
+};
+
+/// Per-shape precomputation of blended intrinsic maps: the mesh scaled to unit area, its mid-edge flattening,
+/// even samples with their geodesic distance table, AGD feature points, interpolation weights and a
+/// closest-point structure. Build once per shape; matching one shape against many reuses it.
+/// All members are read-only after construction and may be shared by concurrent matches.
+template <class Scalar = double>
+class blended_shape {
+ public:
+  blended_shape() = default;
+
+  /// \param V (#V x 3) \param F (#F x 3) a closed, connected, genus-0 manifold (or one the enabled repairs make so)
+  /// \throws invalid_input: empty / non_finite / bad_face (validate_mesh), unsupported_topology and non_manifold
+  ///         (mid_edge_flattening, naming the element and the repair option), degenerate_face (zero total
+  ///         area), bad_parameter (options out of range).
+  /// Complexity: O(S (V + E) log V / threads) for the S-sample distance table, plus one sparse factorisation.
+  blended_shape(const Eigen::Ref<const matrix_x3<Scalar>>& V, const Eigen::Ref<const face_matrix>& F,
+                const blended_shape_options& options = {}) {
+    validate_mesh(V, F, "blended_shape");
+    if (options.num_samples < 3 || options.max_features < 3 || !(options.feature_radius > 0) ||
+        options.interpolation_samples < 1)
+      throw invalid_input(input_error::bad_parameter, no_index,
+                          "blended_shape: need num_samples >= 3, max_features >= 3, feature_radius > 0 and "
+                          "interpolation_samples >= 1");
+    triangle_mesh<Scalar> m;
+    m.V = V;
+    m.F = F;
+    original_vertices_ = V.rows();
+    internal_of_.resize(static_cast<std::size_t>(V.rows()));
+    std::iota(internal_of_.begin(), internal_of_.end(), index_t(0));
+    if (options.keep_largest_component) {
+      auto r = keep_largest_component(m);
+      for (index_t v = 0; v < V.rows(); ++v) internal_of_[static_cast<std::size_t>(v)] = r.old_to_new(v);
+      m = std::move(r.mesh);
+    }
+    if (options.close_small_holes) {
+      auto r = shapestruct::close_small_holes(m, options.max_hole_edges);
+      m = std::move(r.mesh);  // old vertices keep their indices; new ones are appended
+    }
+    original_of_.assign(static_cast<std::size_t>(m.V.rows()), no_index);
+    for (index_t v = 0; v < V.rows(); ++v)
+      if (internal_of_[static_cast<std::size_t>(v)] != no_index)
+        original_of_[static_cast<std::size_t>(internal_of_[static_cast<std::size_t>(v)])] = v;
+    const Scalar area = total_area<Scalar>(m.V, m.F, validation_level::trust);
+    if (!(area > 0) || !std::isfinite(area))
+      throw invalid_input(input_error::degenerate_face, no_index, "blended_shape: the mesh has zero total area");
+    // Unit area: the chapter's sigma = 0.5 and the benchmark's error normalisation are in units of sqrt(area).
+    scale_ = std::sqrt(area);
+    mesh_.V = m.V / scale_;
+    mesh_.F = m.F;
+    flat_ = mid_edge_flattening<Scalar>(mesh_.V, mesh_.F, options.flattening, validation_level::trust);
+    geo_ = std::make_shared<dijkstra_geodesics<Scalar>>(mesh_.V, mesh_.F);
+    const index_t nv = mesh_.V.rows();
+    const index_t S = std::min(options.num_samples, nv);
+    // FPS from the vertex farthest from vertex 0: a deterministic start that does not depend on the file's
+    // first vertex being anywhere in particular.
+    const vector_x<Scalar> d0 = geo_->distances_from(0);
+    index_t start = 0;
+    d0.maxCoeff(&start);
+    const auto fps = geodesic_farthest_point_sampling(*geo_, S, start);
+    samples_ = fps.indices;
+    spacing_ = fps.radii.empty() ? Scalar(1) : std::max(fps.radii.back(), Scalar(1e-6));
+    table_ = geo_->distance_table(std::span<const index_t>(samples_), options.threads);
+    // AGD from the same table (samples are even, so equal weights approximate the area integral).
+    agd_ = table_.rowwise().mean();
+    auto maxima = agd_local_maxima<Scalar>(mesh_.V, mesh_.F, agd_, options.feature_radius);
+    if (static_cast<index_t>(maxima.size()) > options.max_features) maxima.resize(static_cast<std::size_t>(options.max_features));
+    features_ = std::move(maxima);
+    feature_table_ = geo_->distance_table(std::span<const index_t>(features_), options.threads);
+    // Interpolation weights: the K nearest samples of every vertex, Gaussian in geodesic distance.
+    const index_t K = std::min(options.interpolation_samples, S);
+    interp_index_.resize(nv, K);
+    interp_weight_.resize(nv, K);
+    detail::blended_parallel_for(nv, options.threads, [&](index_t v) {
+      std::vector<index_t> order(static_cast<std::size_t>(S));
+      std::iota(order.begin(), order.end(), index_t(0));
+      std::partial_sort(order.begin(), order.begin() + K, order.end(),
+                        [&](index_t a, index_t b) { return table_(v, a) < table_(v, b) || (table_(v, a) == table_(v, b) && a < b); });
+      Scalar sum = 0;
+      for (index_t k = 0; k < K; ++k) {
+        const Scalar d = table_(v, order[static_cast<std::size_t>(k)]) / spacing_;
+        const Scalar w = std::exp(-Scalar(0.5) * d * d) + Scalar(1e-300);
+        interp_index_(v, k) = order[static_cast<std::size_t>(k)];
+        interp_weight_(v, k) = w;
+        sum += w;
+      }
+      interp_weight_.row(v) /= sum;
+    });
+    cpq_ = std::make_shared<closest_point_query<Scalar>>(mesh_.V, mesh_.F);
+  }
+
+  /// The (possibly repaired) mesh scaled to unit area.
+  [[nodiscard]] const triangle_mesh<Scalar>& mesh() const noexcept { return mesh_; }
+  /// sqrt of the original area: multiply unit-area lengths by it to get the input's units.
+  [[nodiscard]] Scalar scale() const noexcept { return scale_; }
+  [[nodiscard]] const mid_edge_flattening<Scalar>& flattening() const noexcept { return flat_; }
+  [[nodiscard]] const dijkstra_geodesics<Scalar>& geodesics() const noexcept { return *geo_; }
+  [[nodiscard]] const closest_point_query<Scalar>& closest_points() const noexcept { return *cpq_; }
+  /// Even samples P_even (vertex ids) and the (#V x #samples) unit-area geodesic distance table.
+  [[nodiscard]] const std::vector<index_t>& samples() const noexcept { return samples_; }
+  [[nodiscard]] const matrix_x<Scalar>& sample_distances() const noexcept { return table_; }
+  /// Covering radius of the samples (unit-area units).
+  [[nodiscard]] Scalar sample_spacing() const noexcept { return spacing_; }
+  /// AGD (#V, unit-area units, estimated from the samples) and its maxima (feature points), strongest first.
+  [[nodiscard]] const vector_x<Scalar>& agd() const noexcept { return agd_; }
+  [[nodiscard]] const std::vector<index_t>& features() const noexcept { return features_; }
+  /// (#V x #features) distances to the feature points.
+  [[nodiscard]] const matrix_x<Scalar>& feature_distances() const noexcept { return feature_table_; }
+  /// Interpolation of per-sample values to vertex v: sum_k weight(v, k) * value[index(v, k)].
+  [[nodiscard]] const Eigen::Matrix<index_t, Eigen::Dynamic, Eigen::Dynamic>& interpolation_index() const noexcept {
+    return interp_index_;
+  }
+  [[nodiscard]] const matrix_x<Scalar>& interpolation_weight() const noexcept { return interp_weight_; }
+  /// Geodesic (unit-area) distance from sample s to a surface point (barycentric blend of the corner distances).
+  [[nodiscard]] Scalar sample_distance(index_t s, const surface_point<Scalar>& p) const {
+    return p.bary[0] * table_(mesh_.F(p.face, 0), s) + p.bary[1] * table_(mesh_.F(p.face, 1), s) +
+           p.bary[2] * table_(mesh_.F(p.face, 2), s);
+  }
+  /// Vertex numbering: the input's vertex v is internal vertex internal_vertex(v) (no_index if a repair dropped
+  /// it); internal vertex i is the input's original_vertex(i) (no_index if a repair added it).
+  [[nodiscard]] index_t internal_vertex(index_t v) const { return internal_of_[static_cast<std::size_t>(v)]; }
+  [[nodiscard]] index_t original_vertex(index_t i) const { return original_of_[static_cast<std::size_t>(i)]; }
+  [[nodiscard]] index_t original_size() const noexcept { return original_vertices_; }
+
+ private:
+  triangle_mesh<Scalar> mesh_;
+  Scalar scale_ = 1;
+  mid_edge_flattening<Scalar> flat_;
+  std::shared_ptr<dijkstra_geodesics<Scalar>> geo_;
+  std::shared_ptr<closest_point_query<Scalar>> cpq_;
+  std::vector<index_t> samples_;
+  Scalar spacing_ = 1;
+  matrix_x<Scalar> table_;
+  vector_x<Scalar> agd_;
+  std::vector<index_t> features_;
+  matrix_x<Scalar> feature_table_;
+  Eigen::Matrix<index_t, Eigen::Dynamic, Eigen::Dynamic> interp_index_;
+  matrix_x<Scalar> interp_weight_;
+  std::vector<index_t> internal_of_, original_of_;
+  index_t original_vertices_ = 0;
+};
+
+/// Precomputes any SurfaceMesh (gathered into triangle_mesh<double>). \throws invalid_input as the constructor.
+template <SurfaceMesh Mesh>
+[[nodiscard]] blended_shape<double> make_blended_shape(const Mesh& mesh, const blended_shape_options& options = {}) {
+  const auto m = to_triangle_mesh<double>(mesh);
+  return blended_shape<double>(m.V, m.F, options);
+}
+
+}  // namespace shapestruct
