@@ -112,4 +112,68 @@ template <class Scalar = double>
   return m;
 }
 
+/// Axis-aligned box centred at the origin with half extents (hx, hy, hz): 8 vertices, 12 outward faces.
+/// Vertex k is the corner with x > 0 iff (k & 1), y > 0 iff (k & 2), z > 0 iff (k & 4), so callers can
+/// name corners without searching. Closed, genus 0.
+/// \throws invalid_input (bad_parameter) unless every half extent is positive and finite.
+template <class Scalar = double>
+[[nodiscard]] triangle_mesh<Scalar> make_box(Scalar hx, Scalar hy, Scalar hz) {
+  if (!(hx > 0 && hy > 0 && hz > 0) || !std::isfinite(double(hx)) || !std::isfinite(double(hy)) || !std::isfinite(double(hz)))
+    throw invalid_input(input_error::bad_parameter, no_index, "make_box: half extents must be positive and finite");
+  triangle_mesh<Scalar> m;
+  m.V.resize(8, 3);
+  for (int k = 0; k < 8; ++k)
+    m.V.row(k) << ((k & 1) ? hx : -hx), ((k & 2) ? hy : -hy), ((k & 4) ? hz : -hz);
+  m.F.resize(12, 3);
+  // Two triangles per side, counter-clockwise seen from outside.
+  m.F << 0, 2, 3, 0, 3, 1,  // -z
+      4, 5, 7, 4, 7, 6,     // +z
+      0, 1, 5, 0, 5, 4,     // -y
+      2, 6, 7, 2, 7, 3,     // +y
+      0, 4, 6, 0, 6, 2,     // -x
+      1, 3, 7, 1, 7, 5;     // +x
+  return m;
+}
+
+/// Closed cylinder (or frustum, or cone when a radius is 0) along +y from y = 0 (radius r0) to y = height
+/// (radius r1), with `segments` sides and capped ends. Vertex 0 is the bottom cap centre, vertex 1 the top
+/// cap centre, then `segments` bottom and `segments` top rim vertices (rim vertex s at angle 2 pi s /
+/// segments, at (r cos a, y, -r sin a)). 2 * segments + 2 vertices, 4 * segments faces
+/// (2 * segments for a cone: a zero radius collapses that rim into its cap centre, and the rim vertices
+/// of that end stay unreferenced). Closed, genus 0.
+/// \throws invalid_input (bad_parameter) for segments < 3, a negative radius, both radii 0, or height <= 0.
+template <class Scalar = double>
+[[nodiscard]] triangle_mesh<Scalar> make_cylinder(Scalar r0, Scalar r1, Scalar height, int segments) {
+  if (segments < 3 || !(r0 >= 0) || !(r1 >= 0) || !(r0 > 0 || r1 > 0) || !(height > 0) || !std::isfinite(double(height)))
+    throw invalid_input(input_error::bad_parameter, no_index,
+                        "make_cylinder: need segments >= 3, radii >= 0 (not both 0) and a positive height");
+  const bool cone0 = r0 == 0, cone1 = r1 == 0;
+  triangle_mesh<Scalar> m;
+  m.V.resize(2 + 2 * segments, 3);
+  m.V.row(0) << 0, 0, 0;
+  m.V.row(1) << 0, height, 0;
+  const double two_pi = 2.0 * std::numbers::pi;
+  for (int s = 0; s < segments; ++s) {
+    const double a = two_pi * s / segments, c = std::cos(a), n = -std::sin(a);
+    m.V.row(2 + s) << Scalar(r0 * c), Scalar(0), Scalar(r0 * n);
+    m.V.row(2 + segments + s) << Scalar(r1 * c), height, Scalar(r1 * n);
+  }
+  std::vector<std::array<index_t, 3>> f;
+  for (int s = 0; s < segments; ++s) {
+    const index_t b0 = 2 + s, b1 = 2 + (s + 1) % segments, t0 = b0 + segments, t1 = b1 + segments;
+    // Rim angle grows from +x towards -z (counter-clockwise seen from +y): the top cap is (1, t0, t1).
+    if (cone0) f.push_back({0, t1, t0});
+    else if (cone1) f.push_back({b0, b1, 1});
+    else {
+      f.push_back({b0, b1, t1});
+      f.push_back({b0, t1, t0});
+    }
+    if (!cone0) f.push_back({0, b1, b0});
+    if (!cone1) f.push_back({1, t0, t1});
+  }
+  m.F.resize(static_cast<index_t>(f.size()), 3);
+  for (std::size_t i = 0; i < f.size(); ++i) m.F.row(static_cast<index_t>(i)) << f[i][0], f[i][1], f[i][2];
+  return m;
+}
+
 }  // namespace shapestruct
