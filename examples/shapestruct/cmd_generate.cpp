@@ -1,0 +1,240 @@
+// SPDX-License-Identifier: MIT
+// `shapestruct generate`: writes a synthetic collection (creatures or assemblies) with its ground truth.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "shapestruct/core/errors.hpp"
+#include "shapestruct/generate/assembly_generator.hpp"
+#include "shapestruct/generate/creature_generator.hpp"
+#include "shapestruct/io/json.hpp"
+#include "shapestruct/io/segmentation_file.hpp"
+#include "shapestruct/io/write_mesh.hpp"
+
+namespace {
+
+using namespace shapestruct;
+namespace fs = std::filesystem;
+
+/// Writes `text` to `path`, naming the path in the error (io_error) if that fails.
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw io_error(file_error::cannot_open, path.string(), 0, 0, "cannot open file for writing");
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  out.flush();
+  if (!out) throw io_error(file_error::write_failed, path.string(), 0, 0, "could not write the whole file");
+}
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", x);
+  return buf;
+}
+
+std::string stem_of(const std::string& prefix, std::uint64_t i) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%06llu", static_cast<unsigned long long>(i));
+  return prefix + "_" + buf;
+}
+
+void write_labels(const fs::path& path, const std::vector<int>& labels) {
+  const std::vector<index_t> l(labels.begin(), labels.end());
+  write_segmentation(path, l);
+}
+
+void write_points(const fs::path& path, const std::vector<feature_point<double>>& features) {
+  std::string out;
+  for (const auto& f : features)
+    out += f.name + " " + number(f.position.x()) + " " + number(f.position.y()) + " " + number(f.position.z()) + "\n";
+  write_text(path, out);
+}
+
+void write_corr(const fs::path& path, const creature<double>& c) {
+  std::string out;
+  out.reserve(c.canonical.size() * 28);
+  for (const auto& p : c.canonical) out += std::to_string(p.patch) + " " + number(p.u) + " " + number(p.v) + "\n";
+  write_text(path, out);
+}
+
+void write_sym(const fs::path& path, const creature<double>& c) {
+  std::string out;
+  out.reserve(c.symmetry.size() * 40);
+  for (std::size_t v = 0; v < c.symmetry.size(); ++v) {
+    const auto& s = c.symmetry[v];
+    out += std::to_string(c.symmetry_vertex[v]) + " " + std::to_string(s.face) + " " + number(s.bary[0]) + " " +
+           number(s.bary[1]) + " " + number(s.bary[2]) + "\n";
+  }
+  write_text(path, out);
+}
+
+json_value names_json(std::span<const char* const> names) {
+  json_value::array a;
+  for (const char* n : names) a.emplace_back(n);
+  return a;
+}
+
+int run_generate(const std::vector<std::string>& args) {
+  cli::arg_reader reader(args);
+  const bool force = reader.flag("--force");
+  const std::string out_dir = reader.option({"-o", "--output"});
+  const long long seed = reader.integer({"--seed"}, 0);
+  const long long first = reader.integer({"--first"}, 0);
+  const long long threads = reader.integer({"--threads"}, 0);
+  const std::string format = reader.option({"--format"}, "off");
+  const auto pos = reader.positionals();
+  if (pos.size() != 2) throw cli::usage_error("expected KIND and N");
+  const std::string kind = pos[0];
+  long long count = 0;
+  try {
+    std::size_t used = 0;
+    count = std::stoll(pos[1], &used);
+    if (used != pos[1].size()) throw std::invalid_argument(pos[1]);
+  } catch (const std::exception&) {
+    throw cli::usage_error("N must be an integer, got '" + pos[1] + "'");
+  }
+  if (count < 1) throw cli::usage_error("N must be at least 1");
+  if (seed < 0 || first < 0 || threads < 0) throw cli::usage_error("--seed, --first and --threads must be >= 0");
+  if (out_dir.empty()) throw cli::usage_error("-o DIR is required");
+  if (format != "off" && format != "obj" && format != "ply") throw cli::usage_error("--format must be off, obj or ply");
+  std::optional<assembly_kind> akind;
+  const bool creatures = kind == "creatures";
+  if (kind == "chairs") akind = assembly_kind::chair;
+  else if (kind == "tables") akind = assembly_kind::table;
+  else if (kind == "airplanes") akind = assembly_kind::airplane;
+  else if (!creatures && kind != "assemblies")
+    throw cli::usage_error("KIND must be creatures, chairs, tables, airplanes or assemblies");
+
+  // Never clobber what a user has: a non-empty folder needs --force (and then only our file names are
+  // replaced; nothing else in it is touched).
+  const fs::path dir(out_dir);
+  std::error_code ec;
+  if (fs::exists(dir, ec)) {
+    if (!fs::is_directory(dir, ec))
+      throw io_error(file_error::cannot_open, dir.string(), 0, 0, "exists and is not a folder");
+    if (!fs::is_empty(dir, ec) && !force)
+      throw io_error(file_error::cannot_open, dir.string(), 0, 0,
+                     "folder is not empty; pass --force to write into it (files of the same name are replaced)");
+  } else if (!fs::create_directories(dir, ec) || ec) {
+    throw io_error(file_error::cannot_open, dir.string(), 0, 0, "cannot create the folder: " + ec.message());
+  }
+
+  const auto t0 = std::chrono::steady_clock::now();
+  json_value::object manifest;
+  manifest.emplace_back("kind", kind);
+  manifest.emplace_back("seed", static_cast<double>(seed));
+  manifest.emplace_back("first", static_cast<double>(first));
+  manifest.emplace_back("count", static_cast<double>(count));
+  manifest.emplace_back("format", format);
+  manifest.emplace_back("up", "+y");
+  manifest.emplace_back("front", "-z");
+  manifest.emplace_back("left", "-x");
+  json_value::object label_names;
+  json_value::array shapes;
+  const auto useed = static_cast<std::uint64_t>(seed), ufirst = static_cast<std::uint64_t>(first);
+  const auto nthreads = static_cast<unsigned>(threads);
+  // Shapes are generated in parallel chunks and written in order, so memory stays bounded for large N.
+  const std::size_t chunk = 64;
+  if (creatures) {
+    const creature_generator<double> gen(useed, {.threads = nthreads});
+    label_names.emplace_back("creature", names_json(creature_part_names));
+    const auto canon = gen.canonical();
+    write_mesh(dir / ("canonical." + format), canon.mesh);
+    write_corr(dir / "canonical.corr", canon);
+    write_labels(dir / "canonical.seg", canon.face_labels);
+    manifest.emplace_back("canonical", json_value::object{{"mesh", "canonical." + format}, {"corr", "canonical.corr"},
+                                                          {"seg", "canonical.seg"}});
+    for (long long done = 0; done < count; done += static_cast<long long>(chunk)) {
+      const std::size_t n = static_cast<std::size_t>(std::min<long long>(static_cast<long long>(chunk), count - done));
+      const auto batch = gen.generate_range(ufirst + static_cast<std::uint64_t>(done), n, nthreads);
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto& c = batch[k];
+        const std::uint64_t index = ufirst + static_cast<std::uint64_t>(done) + k;
+        const std::string stem = stem_of("creature", index);
+        write_mesh(dir / (stem + "." + format), c.mesh);
+        write_labels(dir / (stem + ".seg"), c.face_labels);
+        write_points(dir / (stem + ".pts"), c.features);
+        write_corr(dir / (stem + ".corr"), c);
+        write_sym(dir / (stem + ".sym"), c);
+        json_value::array limbs;
+        for (int s = 0; s < creature_slot_count; ++s)
+          if (c.has_slot[static_cast<std::size_t>(s)]) limbs.emplace_back(creature_slot_tip_names[static_cast<std::size_t>(s)]);
+        shapes.emplace_back(json_value::object{{"index", static_cast<double>(index)},
+                                               {"class", "creature"},
+                                               {"mesh", stem + "." + format},
+                                               {"seg", stem + ".seg"},
+                                               {"pts", stem + ".pts"},
+                                               {"corr", stem + ".corr"},
+                                               {"sym", stem + ".sym"},
+                                               {"vertices", static_cast<double>(c.mesh.num_vertices())},
+                                               {"faces", static_cast<double>(c.mesh.num_faces())},
+                                               {"limb_tips", limbs}});
+      }
+    }
+  } else {
+    const assembly_generator<double> gen(akind, useed, {.threads = nthreads});
+    for (const auto k : {assembly_kind::chair, assembly_kind::table, assembly_kind::airplane})
+      if (!akind || *akind == k) label_names.emplace_back(to_string(k), names_json(assembly_label_names(k)));
+    for (long long done = 0; done < count; done += static_cast<long long>(chunk)) {
+      const std::size_t n = static_cast<std::size_t>(std::min<long long>(static_cast<long long>(chunk), count - done));
+      const auto batch = gen.generate_range(ufirst + static_cast<std::uint64_t>(done), n, nthreads);
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto& a = batch[k];
+        const std::uint64_t index = ufirst + static_cast<std::uint64_t>(done) + k;
+        const std::string stem = stem_of(to_string(a.kind), index);
+        write_mesh(dir / (stem + "." + format), a.mesh);
+        write_labels(dir / (stem + ".seg"), a.face_labels);
+        write_points(dir / (stem + ".pts"), a.features);
+        shapes.emplace_back(json_value::object{{"index", static_cast<double>(index)},
+                                               {"class", to_string(a.kind)},
+                                               {"mesh", stem + "." + format},
+                                               {"seg", stem + ".seg"},
+                                               {"pts", stem + ".pts"},
+                                               {"vertices", static_cast<double>(a.mesh.num_vertices())},
+                                               {"faces", static_cast<double>(a.mesh.num_faces())},
+                                               {"parts", static_cast<double>(a.parts.size())}});
+      }
+    }
+  }
+  manifest.emplace_back("label_names", label_names);
+  manifest.emplace_back("shapes", shapes);
+  write_json((dir / "collection.json").string(), manifest);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::cout << "wrote " << count << " " << kind << " to " << dir.string() << " in " << number(seconds) << " s ("
+            << number(static_cast<double>(count) / seconds) << " shapes/s, files included)\n";
+  return 0;
+}
+
+const cli::register_command reg{
+    "generate",
+    {"write a synthetic collection (creatures, chairs, tables, airplanes) with exact ground truth",
+     "usage: shapestruct generate KIND N -o DIR [--seed S] [--first I] [--format off|obj|ply] [--threads T]\n"
+     "                            [--force]\n"
+     "\n"
+     "KIND: creatures | chairs | tables | airplanes | assemblies (a mix of the three assembly classes).\n"
+     "Writes shapes I .. I+N-1 (default I = 0) of the collection (KIND, S); shape i depends only on\n"
+     "(KIND, S, i), so any subset can be regenerated. Per shape STEM (e.g. creature_000007, chair_000003):\n"
+     "  STEM.off|obj|ply  the mesh (assemblies: a polygon soup of separate parts)\n"
+     "  STEM.seg          one 0-based part label per face per line (names in collection.json)\n"
+     "  STEM.pts          landmarks, one 'name x y z' per line (each is a mesh vertex)\n"
+     "  STEM.corr         creatures: per vertex 'patch u v', its point in the common domain; the same line\n"
+     "                    on canonical.corr / canonical.off (written once) or any creature is the same place\n"
+     "  STEM.sym          creatures: per vertex 'w f b0 b1 b2': w the vertex nearest its left-right mirror\n"
+     "                    image, (f, b) the exact mirror point as face and barycentric weights\n"
+     "  collection.json   kind, seed, count, label names, conventions (+y up, -z front) and the file list\n"
+     "See docs/synthetic_collections.md.\n"
+     "\n"
+     "  -o DIR        output folder; created if missing; a non-empty DIR is refused unless --force\n"
+     "  --seed S      collection seed (default 0)\n"
+     "  --first I     index of the first shape (default 0)\n"
+     "  --format F    mesh format: off (default), obj or ply\n"
+     "  --threads T   generation threads, 0 = all cores (default); output is identical for any T\n"
+     "  --force       write into a non-empty DIR (replaces files of the same names only)",
+     run_generate}};
+
+}  // namespace
