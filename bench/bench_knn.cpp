@@ -46,6 +46,20 @@ void BM_knn_nanoflann(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// The same queries without the Morton reordering of the stored points (knn_index_options::spatial_sort).
+void BM_knn_nanoflann_unsorted(benchmark::State& state) {
+  const auto P = uniform_points(state.range(0), 1);
+  const auto Q = uniform_points(4096, 2);
+  const knn_index<double> index(P, {.spatial_sort = false});
+  index_t q = 0;
+  for (auto _ : state) {
+    auto r = index.knn(Q.row(q), k_neighbors);
+    benchmark::DoNotOptimize(r.indices.data());
+    q = (q + 1) & 4095;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 // The batch API on 2 threads: what the library's own callers (features, fuzzy correspondences) use.
 void BM_knn_nanoflann_batch_2threads(benchmark::State& state) {
   const auto P = uniform_points(state.range(0), 1);
@@ -91,6 +105,7 @@ void BM_knn_brute_force(benchmark::State& state) {
 
 BENCHMARK(BM_knn_build)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_knn_nanoflann)->Arg(10000)->Arg(100000)->Arg(1000000);
+BENCHMARK(BM_knn_nanoflann_unsorted)->Arg(10000)->Arg(100000)->Arg(1000000);
 BENCHMARK(BM_knn_nanoflann_batch_2threads)->Arg(10000)->Arg(100000)->Arg(1000000)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_knn_brute_force)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMicrosecond);
 

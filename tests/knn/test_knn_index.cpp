@@ -87,6 +87,25 @@ TEST_CASE("knn_index: knn and radius equal brute force in 2-D and 8-D") {
   check_against_brute_force<float, 8>(500, 3, 1.0f, 23);
 }
 
+TEST_CASE("knn_index: spatial sorting changes nothing but speed") {
+  const auto P = random_points<double, 3>(3000, 41);
+  const auto Q = random_points<double, 3>(300, 42);
+  const knn_index<double> sorted(P, {.spatial_sort = true});
+  const knn_index<double> unsorted(P, {.spatial_sort = false});
+  const auto a = sorted.knn_batch(Q, 9, 2), b = unsorted.knn_batch(Q, 9, 2);
+  CHECK(a.indices == b.indices);
+  CHECK(a.sq_distances == b.sq_distances);
+  for (index_t i = 0; i < P.rows(); i += 13) {
+    CHECK(sorted.point(i) == P.row(i).transpose());
+    CHECK(unsorted.point(i) == P.row(i).transpose());
+  }
+  for (index_t i = 0; i < Q.rows(); i += 7)
+    CHECK(sorted.radius(Q.row(i), 0.3).indices == unsorted.radius(Q.row(i), 0.3).indices);
+  const auto P2 = random_points<float, 2>(500, 43);
+  const knn_index<float, 2> s2(P2), u2(P2, {.spatial_sort = false});
+  CHECK(s2.knn_batch(P2, 4, 1).indices == u2.knn_batch(P2, 4, 1).indices);
+}
+
 TEST_CASE("knn_index: radius is inclusive at exactly r") {
   Eigen::Matrix<double, Eigen::Dynamic, 3> P(3, 3);
   P << 0, 0, 0, 1, 0, 0, 2, 0, 0;
@@ -99,12 +118,12 @@ TEST_CASE("knn_index: radius is inclusive at exactly r") {
 
 TEST_CASE("knn_index: batch equals single queries, identical for 1 and 2 threads") {
   const auto P = random_points<double, 3>(5000, 31);
-  const auto Q = random_points<double, 3>(700, 32);
+  const auto Q = random_points<double, 3>(1500, 32);  // >= 1024: the Morton-ordered batch path
   const knn_index<double> index(P);
   const auto b1 = index.knn_batch(Q, 8, 1);
   const auto b2 = index.knn_batch(Q, 8, 2);
   const auto b0 = index.knn_batch(Q, 8, 0);
-  REQUIRE(b1.indices.rows() == 700);
+  REQUIRE(b1.indices.rows() == 1500);
   REQUIRE(b1.indices.cols() == 8);
   CHECK(b1.indices == b2.indices);
   CHECK(b1.sq_distances == b2.sq_distances);

@@ -67,6 +67,10 @@ struct knn_index_options {
   /// Points per kd-tree leaf. nanoflann's default of 10 is close to the optimum for k = 1..16 queries in 3-D
   /// (smaller leaves deepen the tree, larger ones scan more points per leaf). Must be >= 1.
   index_t leaf_size = 10;
+  /// Store the points in Morton (Z-order) order of their first min(Dim, 3) coordinates, so that each kd-tree
+  /// leaf's points are contiguous in memory. Answers are identical either way (indices always refer to the
+  /// input order); it only changes speed, mostly for sets larger than the CPU caches.
+  bool spatial_sort = true;
 };
 
 /// Exact Euclidean k-nearest-neighbour and radius search over a fixed set of Dim-dimensional points,
@@ -141,7 +145,9 @@ class knn_index {
 
   /// Point i of the indexed copy, i in [0, size()) (unchecked, like Eigen's operator()).
   [[nodiscard]] Eigen::Map<const point_type> point(index_t i) const {
-    return Eigen::Map<const point_type>(impl_->adaptor.data.data() + i * Dim);
+    const auto& to_internal = impl_->to_internal;
+    const index_t internal = to_internal.empty() ? i : static_cast<index_t>(to_internal[static_cast<std::size_t>(i)]);
+    return Eigen::Map<const point_type>(impl_->adaptor.data.data() + internal * Dim);
   }
 
   /// The k nearest indexed points to q, sorted by increasing squared distance (O(k log P) expected).
@@ -235,7 +241,14 @@ class knn_index {
     out.indices.setConstant(Q.rows(), kk, no_index);
     out.sq_distances.setConstant(Q.rows(), kk, std::numeric_limits<Scalar>::infinity());
     if (kk == 0) return out;
-    detail::knn_parallel_for(Q.rows(), workers, [&](index_t i) {
+    // Answer the queries in Morton order: consecutive queries then walk the same tree branches and leaves,
+    // which stay in cache. Each answer still goes to its own row, so the result is unchanged.
+    std::vector<std::uint32_t> order;
+    if (Q.rows() >= 1024)
+      order = morton_order(static_cast<std::size_t>(Q.rows()),
+                           [&](std::size_t i, int d) { return Q(static_cast<index_t>(i), d); });
+    detail::knn_parallel_for(Q.rows(), workers, [&](index_t j) {
+      const index_t i = order.empty() ? j : static_cast<index_t>(order[static_cast<std::size_t>(j)]);
       const point_type p = Q.row(i).transpose();
       with_buffers(kk, [&](std::uint32_t* ids, Scalar* d) {
         const index_t found = knn_raw(p, kk, ids, d);
@@ -269,16 +282,23 @@ class knn_index {
   struct impl {
     adaptor_type adaptor;
     std::unique_ptr<tree_type> tree;
+    // With spatial_sort: to_input[internal id] = input index, to_internal[input index] = internal id.
+    // Empty when the points are stored in input order.
+    std::vector<std::uint32_t> to_input, to_internal;
   };
 
   // k best candidates ordered by (distance, index), the protocol nanoflann 1.4 and 1.5 both call.
+  // Ids are mapped back to input indices as they arrive (to_input, or nullptr for identity), so ties are
+  // broken by input index whatever the storage order.
   struct knn_set {
     std::uint32_t* ids;
     Scalar* dists;
     std::size_t capacity;
+    const std::uint32_t* to_input;
     std::size_t count = 0;
     Scalar worst = std::numeric_limits<Scalar>::max();
-    bool addPoint(Scalar d, std::uint32_t id) {
+    bool addPoint(Scalar d, std::uint32_t internal) {
+      const std::uint32_t id = to_input ? to_input[internal] : internal;
       std::size_t i = count;
       while (i > 0 && (dists[i - 1] > d || (dists[i - 1] == d && ids[i - 1] > id))) {
         if (i < capacity) {
@@ -310,8 +330,9 @@ class knn_index {
     Scalar r2;
     Scalar bound;
     std::vector<std::pair<std::uint32_t, Scalar>>* hits;
-    bool addPoint(Scalar d, std::uint32_t id) {
-      if (d <= r2) hits->emplace_back(id, d);
+    const std::uint32_t* to_input;
+    bool addPoint(Scalar d, std::uint32_t internal) {
+      if (d <= r2) hits->emplace_back(to_input ? to_input[internal] : internal, d);
       return true;
     }
     [[nodiscard]] Scalar worstDist() const { return bound; }
@@ -333,9 +354,57 @@ class knn_index {
           throw invalid_input(input_error::non_finite, static_cast<index_t>(i),
                               "knn_index: point " + std::to_string(i) + " has a non-finite coordinate");
     if (n == 0) return;
+    if (options.spatial_sort && n > static_cast<std::size_t>(options.leaf_size)) spatial_sort();
     impl_->tree = std::make_unique<tree_type>(
         Dim, impl_->adaptor,
         nanoflann::KDTreeSingleIndexAdaptorParams(static_cast<std::size_t>(options.leaf_size)));
+  }
+
+  // Order of n points (coordinate d of point i at coord(i, d)) along a Morton (Z-order) curve: 21 bits per
+  // coordinate over the bounding box of the first min(Dim, 3) coordinates, ties by index, so the order is
+  // deterministic. O(n log n).
+  template <class Coord>
+  static std::vector<std::uint32_t> morton_order(std::size_t n, Coord&& coord) {
+    constexpr int used = Dim < 3 ? Dim : 3;
+    std::array<double, used> lo, hi;
+    lo.fill(std::numeric_limits<double>::infinity());
+    hi.fill(-std::numeric_limits<double>::infinity());
+    for (std::size_t i = 0; i < n; ++i)
+      for (int d = 0; d < used; ++d) {
+        lo[std::size_t(d)] = std::min(lo[std::size_t(d)], double(coord(i, d)));
+        hi[std::size_t(d)] = std::max(hi[std::size_t(d)], double(coord(i, d)));
+      }
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::uint64_t code = 0;
+      for (int d = 0; d < used; ++d) {
+        const double extent = hi[std::size_t(d)] - lo[std::size_t(d)];
+        const double t = extent > 0 ? (double(coord(i, d)) - lo[std::size_t(d)]) / extent : 0.0;
+        const auto q = static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * double((1u << 21) - 1));
+        for (int b = 0; b < 21; ++b) code |= ((q >> b) & 1u) << (used * b + d);
+      }
+      keys[i] = {code, static_cast<std::uint32_t>(i)};
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<std::uint32_t> order(n);
+    for (std::size_t j = 0; j < n; ++j) order[j] = keys[j].second;
+    return order;
+  }
+
+  // Stores the points in Morton order so each kd-tree leaf's points are contiguous in memory.
+  void spatial_sort() {
+    auto& data = impl_->adaptor.data;
+    const std::size_t n = data.size() / Dim;
+    impl_->to_input = morton_order(n, [&](std::size_t i, int d) { return data[i * Dim + std::size_t(d)]; });
+    std::vector<Scalar> sorted(data.size());
+    impl_->to_internal.resize(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::uint32_t i = impl_->to_input[j];
+      impl_->to_internal[i] = static_cast<std::uint32_t>(j);
+      std::copy_n(data.begin() + static_cast<std::ptrdiff_t>(std::size_t(i) * Dim), Dim,
+                  sorted.begin() + static_cast<std::ptrdiff_t>(j * Dim));
+    }
+    data.swap(sorted);
   }
 
   template <class Derived>
@@ -375,13 +444,14 @@ class knn_index {
   }
 
   index_t knn_raw(const point_type& p, index_t k, std::uint32_t* ids, Scalar* d) const {
-    knn_set set{ids, d, static_cast<std::size_t>(k)};
+    knn_set set{ids, d, static_cast<std::size_t>(k), impl_->to_input.empty() ? nullptr : impl_->to_input.data()};
     impl_->tree->findNeighbors(set, p.data(), detail::nanoflann_search_params());
     return static_cast<index_t>(set.size());
   }
 
   void radius_raw(const point_type& p, Scalar r2, std::vector<std::pair<std::uint32_t, Scalar>>& hits) const {
-    radius_set set{r2, std::nextafter(r2, std::numeric_limits<Scalar>::infinity()), &hits};
+    radius_set set{r2, std::nextafter(r2, std::numeric_limits<Scalar>::infinity()), &hits,
+                   impl_->to_input.empty() ? nullptr : impl_->to_input.data()};
     impl_->tree->findNeighbors(set, p.data(), detail::nanoflann_search_params());
     std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
       return a.second < b.second || (a.second == b.second && a.first < b.first);
