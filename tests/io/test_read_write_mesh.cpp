@@ -70,6 +70,8 @@ TEST_CASE("read_mesh sniffs the content when the extension is missing or unknown
     CHECK(m.mesh.num_vertices() == 4);
     CHECK(m.mesh.num_faces() == 4);
   }
+  std::ofstream(tmp.path / "commented_off") << "# an OFF file with a comment first\n" << format_off<double>(tet.V, tet.F);
+  CHECK(read_mesh(tmp.path / "commented_off").mesh.num_faces() == 4);
   std::ofstream(tmp.path / "garbage.dat") << "hello world\n";
   require_io_error([&] { (void)read_mesh(tmp.path / "garbage.dat"); }, file_error::unsupported);
   require_io_error([&] { (void)read_mesh(tmp.path / "missing.off"); }, file_error::cannot_open);

@@ -19,24 +19,23 @@ namespace shapestruct {
 /// The mesh formats shapestruct reads and writes.
 enum class mesh_format { off, obj, ply, stl, unknown };
 
-/// Guesses the format from the first bytes: "ply", an OFF keyword, "solid" or an exact binary-STL size,
-/// OBJ statements ("v ", "f ", "o ", "g ", "#"). Returns unknown when nothing matches.
-/// Complexity: O(1) (looks at most at the first line plus the STL size field).
+/// Guesses the format from the content: an exact binary-STL size, "ply", "solid", then the first statement
+/// after blank and `#` comment lines (which both OFF and OBJ allow): an OFF keyword or an OBJ statement
+/// (v, vt, vn, f, o, g, mtllib, usemtl, s). Returns unknown when nothing matches.
+/// Complexity: O(length of the leading comment lines).
 [[nodiscard]] inline mesh_format sniff_mesh_format(std::string_view bytes) {
+  if (io_detail::stl_binary_size_matches(bytes)) return mesh_format::stl;
   std::size_t i = 0;
   while (i < bytes.size() && io_detail::text_scanner::is_space(bytes[i])) ++i;
-  const std::string_view head = bytes.substr(i, 64);
-  if (bytes.size() >= 84) {
-    if (io_detail::stl_binary_size_matches(bytes)) return mesh_format::stl;
-  }
+  const std::string_view head = bytes.substr(i);
   if (head.starts_with("ply")) return mesh_format::ply;
   if (io_detail::looks_like_ascii_stl(bytes)) return mesh_format::stl;
-  const std::size_t word_end = head.find_first_of(" \t\r\n");
-  const std::string_view word = head.substr(0, word_end);
+  io_detail::text_scanner sc(bytes, "", '#');
+  if (!sc.next_content_line()) return mesh_format::unknown;
+  const std::string_view word = sc.token();
   if (word.size() >= 3 && word.substr(word.size() - 3) == "OFF") return mesh_format::off;
-  if (word == "v" || word == "f" || word == "o" || word == "g" || word == "vn" || word == "vt" || word == "mtllib" ||
-      head.starts_with("#"))
-    return mesh_format::obj;
+  for (std::string_view kw : {"v", "vt", "vn", "f", "o", "g", "mtllib", "usemtl", "s"})
+    if (word == kw) return mesh_format::obj;
   return mesh_format::unknown;
 }
 
