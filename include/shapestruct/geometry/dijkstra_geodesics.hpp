@@ -196,8 +196,10 @@ class dijkstra_geodesics {
   }
 
   void prepare(workspace& ws) const {
-    if (ws.pos_.size() != static_cast<std::size_t>(num_vertices()))
+    if (ws.pos_.size() != static_cast<std::size_t>(num_vertices())) {
       ws.pos_.assign(static_cast<std::size_t>(num_vertices()), -1);
+      ws.heap_.reserve(static_cast<std::size_t>(num_vertices()));  // the heap never holds a vertex twice
+    }
     ws.heap_.clear();
   }
 
@@ -225,9 +227,15 @@ class dijkstra_geodesics {
     ws.heap_[i] = x;
     ws.pos_[static_cast<std::size_t>(x.v)] = static_cast<std::int32_t>(i);
   }
-  static void sift_down(workspace& ws, std::size_t i) {
+  /// Removes the root. Floyd's variant: the hole left by the root walks down to a leaf along the smaller
+  /// children (one comparison fewer per level than a plain sift-down), then the former last element, which
+  /// is nearly always a large key, is sifted up from there - usually by zero or one level.
+  static void pop_root(workspace& ws) {
+    const auto last = ws.heap_.back();
+    ws.heap_.pop_back();
     const std::size_t n = ws.heap_.size();
-    const auto x = ws.heap_[i];
+    if (n == 0) return;
+    std::size_t i = 0;
     for (;;) {
       const std::size_t c0 = 4 * i + 1;
       if (c0 >= n) break;
@@ -235,13 +243,12 @@ class dijkstra_geodesics {
       const std::size_t cend = std::min(c0 + 4, n);
       for (std::size_t c = c0 + 1; c < cend; ++c)
         if (ws.heap_[c].key < ws.heap_[best].key) best = c;
-      if (!(ws.heap_[best].key < x.key)) break;
       ws.heap_[i] = ws.heap_[best];
       ws.pos_[static_cast<std::size_t>(ws.heap_[i].v)] = static_cast<std::int32_t>(i);
       i = best;
     }
-    ws.heap_[i] = x;
-    ws.pos_[static_cast<std::size_t>(x.v)] = static_cast<std::int32_t>(i);
+    ws.heap_[i] = last;
+    sift_up(ws, i);
   }
   static void push(workspace& ws, std::int32_t v, Scalar key) {
     const std::int32_t p = ws.pos_[static_cast<std::size_t>(v)];
@@ -264,12 +271,7 @@ class dijkstra_geodesics {
     while (!ws.heap_.empty()) {
       const auto top = ws.heap_.front();
       ws.pos_[static_cast<std::size_t>(top.v)] = -1;
-      const auto last = ws.heap_.back();
-      ws.heap_.pop_back();
-      if (!ws.heap_.empty()) {
-        ws.heap_.front() = last;
-        sift_down(ws, 0);
-      }
+      pop_root(ws);
       if (top.key > radius || !visit(top.v, top.key) || top.v == target) break;
       const Scalar du = top.key;
       for (std::int32_t k = off[top.v], end = off[top.v + 1]; k < end; ++k) {
