@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: MIT
+// Automatic template initialisation (dissertation 5.3.4): templates from segmentations of candidate shapes.
+#pragma once
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+#include "shapestruct/core/errors.hpp"
+#include "shapestruct/templates/part_template.hpp"
+#include "shapestruct/templates/shape_samples.hpp"
+#include "shapestruct/templates/template_fitter.hpp"
+#include "shapestruct/templates/template_learner.hpp"
+
+namespace shapestruct {
+
+/// Options of template_from_shape and auto_templates.
+struct template_initializer_options {
+  int parts = 4;            ///< N_seg: Voronoi seeds per candidate segmentation
+  int candidates = 10;      ///< shapes segmented into candidate templates (chosen with a seeded shuffle)
+  int learn_best = 3;       ///< fully automatic mode: learn from this many best candidates (chapter: 10)
+  int up_axis = 1;
+  double init_sigma = 0.08;  ///< loose Gaussians of an initial template (positions and sizes, canonical units)
+  std::uint64_t seed = 1;
+};
+
+/// A candidate template from one shape (5.3.4): N_seg farthest-point seeds (the first is the sample farthest
+/// from the centroid), Voronoi cells of the samples, one box per cell oriented along the cell's PCA axes with
+/// side lengths sqrt(12) standard deviations (the extent of a uniform distribution with that spread; the chapter
+/// says "one standard deviation"), then the fitter re-labels the shape with E_data + E_smooth only (loose
+/// deformation prior) and the fitted boxes become the template. Returns the template and its fitting energy.
+/// \throws invalid_input empty (fewer samples than parts), bad_parameter (parts < 1), validate_samples'.
+inline std::pair<part_template, double> template_from_shape(const shape_samples& s,
+                                                            const template_initializer_options& opt = {},
+                                                            const template_fit_options& fit_opt = {}) {
+  validate_samples(s, "template_from_shape");
+  if (opt.parts < 1 || opt.up_axis < 0 || opt.up_axis > 2 || !(opt.init_sigma > 0))
+    throw invalid_input(input_error::bad_parameter, no_index,
+                        "template_from_shape: parts >= 1, up_axis in {0, 1, 2}, init_sigma > 0");
+  const index_t n = s.size(), K = opt.parts;
+  if (n < 4 * K)
+    throw invalid_input(input_error::empty, no_index,
+                        "template_from_shape: " + std::to_string(n) + " samples are too few for " +
+                            std::to_string(K) + " parts");
+  // Farthest-point seeds.
+  const Eigen::RowVector3d centroid = s.points.colwise().mean();
+  std::vector<index_t> seeds;
+  Eigen::VectorXd dist(n);
+  index_t first = 0;
+  (s.points.rowwise() - centroid).rowwise().squaredNorm().maxCoeff(&first);
+  seeds.push_back(first);
+  dist = (s.points.rowwise() - s.points.row(first)).rowwise().squaredNorm();
+  while (static_cast<index_t>(seeds.size()) < K) {
+    index_t next = 0;
+    dist.maxCoeff(&next);
+    seeds.push_back(next);
+    dist = dist.cwiseMin((s.points.rowwise() - s.points.row(next)).rowwise().squaredNorm());
+  }
+  std::vector<index_t> cell(static_cast<std::size_t>(n), 0);
+  for (index_t i = 0; i < n; ++i) {
+    double best = std::numeric_limits<double>::infinity();
+    for (index_t k = 0; k < K; ++k) {
+      const double d = (s.points.row(i) - s.points.row(seeds[static_cast<std::size_t>(k)])).squaredNorm();
+      if (d < best) {
+        best = d;
+        cell[static_cast<std::size_t>(i)] = k;
+      }
+    }
+  }
+  part_template t;
+  t.id = "auto";
+  t.up_axis = opt.up_axis;
+  for (index_t k = 0; k < K; ++k) {
+    std::vector<index_t> mem;
+    for (index_t i = 0; i < n; ++i)
+      if (cell[static_cast<std::size_t>(i)] == k) mem.push_back(i);
+    Eigen::Vector3d mu = Eigen::Vector3d::Zero();
+    for (const auto i : mem) mu += s.points.row(i).transpose();
+    mu /= static_cast<double>(std::max<std::size_t>(mem.size(), 1));
+    Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+    for (const auto i : mem) {
+      const Eigen::Vector3d d = s.points.row(i).transpose() - mu;
+      C += d * d.transpose();
+    }
+    C /= static_cast<double>(std::max<std::size_t>(mem.size(), 1));
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(C);
+    Eigen::Matrix3d A = es.eigenvectors().transpose();  // rows = axes (ascending variance)
+    if (A.determinant() < 0) A.row(0) *= -1;             // keep a right-handed frame
+    part_box b;
+    b.name = "part " + std::to_string(k);
+    b.label = k;
+    b.center = mu;
+    b.axes = A;
+    b.size = (12.0 * es.eigenvalues().cwiseMax(0.0)).cwiseSqrt().cwiseMax(0.01);
+    b.sigma_center = Eigen::Vector3d::Constant(opt.init_sigma);
+    b.sigma_size = Eigen::Vector3d::Constant(opt.init_sigma);
+    t.parts.push_back(std::move(b));
+  }
+  // Refit on its own shape without the deformation prior (E_data + E_smooth) and keep the fitted boxes.
+  template_fit_options fo = fit_opt;
+  fo.rotations = 1;
+  const auto free_energy = energy_sum<distance_term, feature_term, smoothness_term>(distance_term{1.0},
+                                                                                     feature_term{2.0, 1.0},
+                                                                                     smoothness_term{2.0});
+  const auto fit = fit_template(t, s, fo, free_energy);
+  for (std::size_t b = 0; b < t.parts.size(); ++b) {
+    t.parts[b].center = fit.centers[b];
+    t.parts[b].size = fit.sizes[b].cwiseMax(0.01);
+  }
+  return {t, fit.energy};
+}
+
+/// Fully automatic templates (5.3.4): candidate templates from `candidates` shapes (template_from_shape),
+/// sorted by their fitting energy; the best `learn_best` are each learned on the collection (learn_templates)
+/// and the resulting template set with the lowest average fitting energy over the collection is returned.
+/// \throws invalid_input empty (no shapes), and those of template_from_shape / learn_templates.
+inline std::vector<part_template> auto_templates(const std::vector<shape_samples>& shapes,
+                                                 const template_learner_options& learn = {},
+                                                 const template_initializer_options& opt = {}) {
+  if (shapes.empty()) throw invalid_input(input_error::empty, no_index, "auto_templates: no shapes");
+  std::vector<std::size_t> order(shapes.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::mt19937_64 rng(opt.seed);
+  std::shuffle(order.begin(), order.end(), rng);
+  order.resize(std::min<std::size_t>(order.size(), static_cast<std::size_t>(std::max(1, opt.candidates))));
+  std::vector<std::pair<double, part_template>> cands(order.size());
+  detail::parallel_for(order.size(), detail::resolve_threads(learn.threads), [&](std::size_t k) {
+    auto [t, e] = template_from_shape(shapes[order[k]], opt, learn.fit);
+    t.id = "auto from shape " + std::to_string(order[k]);
+    cands[k] = {e, std::move(t)};
+  });
+  std::stable_sort(cands.begin(), cands.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<part_template> best;
+  double best_avg = std::numeric_limits<double>::infinity();
+  const std::size_t tries = std::min<std::size_t>(cands.size(), static_cast<std::size_t>(std::max(1, opt.learn_best)));
+  for (std::size_t c = 0; c < tries; ++c) {
+    auto learned = learn_templates({cands[c].second}, shapes, learn).templates;
+    const auto fits = fit_template_set(learned, shapes, learn);
+    double avg = 0;
+    for (const auto& f : fits) avg += f.fit.energy;
+    avg /= static_cast<double>(fits.size());
+    if (avg < best_avg) {
+      best_avg = avg;
+      best = std::move(learned);
+    }
+  }
+  return best;
+}
+
+}  // namespace shapestruct
