@@ -74,7 +74,8 @@ struct knn_index_options {
 };
 
 /// Exact Euclidean k-nearest-neighbour and radius search over a fixed set of Dim-dimensional points,
-/// a kd-tree built with nanoflann (O(P log P) build, O(P * Dim) memory).
+/// a kd-tree built with nanoflann (O(P log P) build; memory: the copied coordinates, plus three 32-bit ids per
+/// point for nanoflann's permutation and the Morton-order maps).
 ///
 /// Lifetime: the index OWNS a copy of the points, so the source may be modified or destroyed after
 /// construction. The index is move-only (the kd-tree refers to the copied points; moving keeps them in place).
@@ -136,8 +137,7 @@ class knn_index {
   knn_index& operator=(const knn_index&) = delete;
   ~knn_index() = default;
 
-  /// Number of indexed points.
-  /// A moved-from index behaves as an empty one.
+  /// Number of indexed points. A moved-from index behaves as an empty one.
   [[nodiscard]] index_t size() const noexcept {
     return impl_ ? static_cast<index_t>(impl_->adaptor.data.size() / Dim) : 0;
   }
