@@ -15,8 +15,8 @@
 
 namespace shapestruct {
 
-/// Ear clipping costs O(n^3) in the worst case; above this many corners a non-convex polygon is fanned
-/// instead, so that a hostile file with one 10^6-corner polygon cannot stall the reader. Real meshes
+/// Ear clipping costs O(n^2) (with the work budget below); above this many corners a non-convex polygon is
+/// fanned instead, so that a hostile file with one 10^6-corner polygon cannot stall the reader. Real meshes
 /// (CAD n-gons, scanned quads) stay far below it.
 inline constexpr std::size_t ear_clipping_max_corners = 256;
 
@@ -30,7 +30,8 @@ inline constexpr std::size_t ear_clipping_max_corners = 256;
 /// \param V `#V x 3` positions; every corner must be a valid row index (callers check, this is not re-checked).
 /// \param corners the polygon's vertex indices.
 /// \param out receives the triangles.
-/// Complexity: O(n) for convex polygons, O(n^3) worst case for non-convex ones with n <= ear_clipping_max_corners.
+/// Complexity: O(n) for convex polygons, O(n^2) for non-convex ones (bounded by a work budget; above it, and
+/// above ear_clipping_max_corners, the remaining corners are clipped without the ear test).
 template <class Derived>
 void triangulate_polygon(const Eigen::MatrixBase<Derived>& V, std::span<const index_t> corners,
                          std::vector<std::array<index_t, 3>>& out) {
@@ -87,10 +88,16 @@ void triangulate_polygon(const Eigen::MatrixBase<Derived>& V, std::span<const in
     prev[k] = (k + n - 1) % n;
     next[k] = (k + 1) % n;
   }
+  // Work budget: ear clipping is O(n^2) on real polygons but O(n^3) on adversarial ones (ears far apart, or
+  // none at all when self-intersecting). Past 4 n^2 containment tests the rest is clipped without testing,
+  // so a file of many hostile polygons costs O(n^2) bytes-proportional work each, never a hang.
+  const std::size_t budget = 4 * n * n;
+  std::size_t work = 0;
   auto is_ear = [&](std::size_t i) {
     const std::size_t a = prev[i], c = next[i];
     if (cross(p[a], p[i], p[c]) <= 0) return false;  // reflex or flat corner
     for (std::size_t j = next[c]; j != a; j = next[j]) {
+      ++work;
       const Eigen::Vector2d& q = p[j];
       if (q == p[a] || q == p[i] || q == p[c]) continue;  // touching corners (e.g. a hole bridge) do not block
       if (cross(p[a], p[i], q) >= 0 && cross(p[i], p[c], q) >= 0 && cross(p[c], p[a], q) >= 0) return false;
@@ -101,7 +108,7 @@ void triangulate_polygon(const Eigen::MatrixBase<Derived>& V, std::span<const in
   while (remaining > 3) {
     // After a full lap without an ear the polygon self-intersects: clip the current corner anyway so that
     // the loop always terminates with remaining - 2 triangles.
-    if (is_ear(i) || misses >= remaining) {
+    if (work > budget || misses >= remaining || is_ear(i)) {
       out.push_back({poly[prev[i]], poly[i], poly[next[i]]});
       next[prev[i]] = next[i];
       prev[next[i]] = prev[i];

@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: MIT
+// Readers for the files of the BIM correspondence benchmark: .query pair lists, .pid / .vts feature points,
+// .sym.info symmetries and the original authors' BenchResult_*.txt per-pair results.
+#pragma once
+
+#include <cstdint>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/types.hpp"
+
+namespace shapestruct {
+
+/// One mesh of the benchmark as named in a .query file: data set ("SCAPE", "TOSCA", "SHREC"), class and id.
+struct bim_mesh_ref {
+  std::string dataset, cls, id;
+
+  /// The mesh's name as used in BenchResult file names: mesh%03d (SCAPE), <class><id> (TOSCA), <id> (SHREC).
+  [[nodiscard]] std::string name() const {
+    if (dataset == "SCAPE") {
+      std::string s = id;
+      while (s.size() < 3) s = "0" + s;
+      return "mesh" + s;
+    }
+    if (dataset == "TOSCA") return cls + id;
+    return id;
+  }
+  /// Path of the mesh relative to the data root.
+  [[nodiscard]] std::string relative_path() const {
+    if (dataset == "SCAPE") return "SCAPE/Meshes/" + name() + ".off";
+    if (dataset == "TOSCA") return "TOSCA/Meshes/" + name() + ".off";
+    return "watertight_shrec07/Meshes/" + id + ".off";
+  }
+};
+
+/// A (source, target) pair of a .query file.
+struct bim_pair {
+  bim_mesh_ref source, target;
+};
+
+namespace detail {
+inline std::ifstream bim_open(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw io_error(file_error::cannot_open, path, 0, 0, "cannot open the file");
+  return in;
+}
+inline std::string bim_trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return {};
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+}  // namespace detail
+
+/// Reads a .query file: each mesh is three lines (data set, class, id), two meshes per pair.
+/// \throws io_error (cannot_open, truncated when the line count is not a multiple of 6).
+inline std::vector<bim_pair> read_bim_query(const std::string& path) {
+  auto in = detail::bim_open(path);
+  std::vector<std::string> lines;
+  std::string line;
+  while (std::getline(in, line)) {
+    line = detail::bim_trim(line);
+    if (!line.empty()) lines.push_back(line);
+  }
+  if (lines.size() % 6 != 0)
+    throw io_error(file_error::truncated, path, static_cast<std::int64_t>(lines.size()), 0,
+                   "a .query file has 6 non-empty lines per pair; got " + std::to_string(lines.size()));
+  std::vector<bim_pair> out;
+  for (std::size_t i = 0; i < lines.size(); i += 6)
+    out.push_back({{lines[i], lines[i + 1], lines[i + 2]}, {lines[i + 3], lines[i + 4], lines[i + 5]}});
+  return out;
+}
+
+/// Reads the first integer column of a .pid (SCAPE/TOSCA: "vertex 0 0 0") or .vts ("vertex x y z") file:
+/// the 0-based feature vertices, line i = feature point i.
+/// \throws io_error (cannot_open; syntax naming the line if a line does not start with an integer).
+inline std::vector<index_t> read_bim_feature_vertices(const std::string& path) {
+  auto in = detail::bim_open(path);
+  std::vector<index_t> out;
+  std::string line;
+  std::int64_t ln = 0;
+  while (std::getline(in, line)) {
+    ++ln;
+    if (detail::bim_trim(line).empty()) continue;
+    std::istringstream ss(line);
+    long long v = 0;
+    if (!(ss >> v)) throw io_error(file_error::syntax, path, ln, 0, "expected a vertex index at the start of the line");
+    if (v < 0) throw io_error(file_error::bad_value, path, ln, 0, "negative vertex index " + std::to_string(v));
+    out.push_back(static_cast<index_t>(v));
+  }
+  return out;
+}
+
+/// Reads a .sym.info file (one symmetry orbit per line, indices into the feature list) into a permutation of
+/// [0, n): orbit (a b) swaps a and b; a longer orbit (a b c ...) is a cycle a->b->c->...->a; indices on no line
+/// are fixed points.
+/// \throws io_error (cannot_open; bad_value naming the line for an index outside [0, n)).
+inline std::vector<index_t> read_bim_symmetry(const std::string& path, index_t n) {
+  auto in = detail::bim_open(path);
+  std::vector<index_t> perm(static_cast<std::size_t>(n));
+  std::iota(perm.begin(), perm.end(), index_t(0));
+  std::string line;
+  std::int64_t ln = 0;
+  while (std::getline(in, line)) {
+    ++ln;
+    std::istringstream ss(line);
+    std::vector<index_t> orbit;
+    long long v;
+    while (ss >> v) {
+      if (v < 0 || v >= n)
+        throw io_error(file_error::bad_value, path, ln, 0,
+                       "symmetry index " + std::to_string(v) + " outside [0, " + std::to_string(n) + ")");
+      orbit.push_back(static_cast<index_t>(v));
+    }
+    if (orbit.size() < 2) continue;  // a single index is its own image
+    for (std::size_t k = 0; k < orbit.size(); ++k)
+      perm[static_cast<std::size_t>(orbit[k])] = orbit[(k + 1) % orbit.size()];
+  }
+  return perm;
+}
+
+/// One block (Stats, StatsWithFlip, ...) of a BenchResult file.
+struct bim_result_block {
+  double average = 0;
+  std::vector<double> per_sample_errors;
+  double time = 0;  ///< seconds ("Time"), 0 when absent
+  bool flipped = false;
+};
+
+/// The blocks of a BenchResult_<Method>_<A>_to_<B>.txt file by name ("Stats", "StatsWithFlip", ...).
+/// \throws io_error (cannot_open; syntax naming the line for an unparsable number).
+inline std::map<std::string, bim_result_block> read_bim_result(const std::string& path) {
+  auto in = detail::bim_open(path);
+  std::map<std::string, bim_result_block> out;
+  std::string line, current;
+  std::int64_t ln = 0;
+  while (std::getline(in, line)) {
+    ++ln;
+    const std::string t = detail::bim_trim(line);
+    if (t.empty()) continue;
+    if (t.back() == ':' && line[0] != '\t' && line[0] != ' ') {
+      current = t.substr(0, t.size() - 1);
+      out[current];
+      continue;
+    }
+    const auto lb = t.find('['), rb = t.rfind(']');
+    if (current.empty() || lb == std::string::npos || rb == std::string::npos || rb < lb) continue;
+    const std::string key = detail::bim_trim(t.substr(0, lb));
+    std::string body = t.substr(lb + 1, rb - lb - 1);
+    auto& blk = out[current];
+    try {
+      if (key == "Average") blk.average = std::stod(body);
+      else if (key == "Time") blk.time = std::stod(body);
+      else if (key == "Flipped") blk.flipped = body == "true";
+      else if (key == "PerSampleErrors") {
+        for (char& c : body)
+          if (c == ',') c = ' ';
+        std::istringstream ss(body);
+        double x;
+        while (ss >> x) blk.per_sample_errors.push_back(x);
+      }
+    } catch (const std::exception&) {
+      throw io_error(file_error::syntax, path, ln, 0, "cannot parse the value of " + key);
+    }
+  }
+  return out;
+}
+
+}  // namespace shapestruct
