@@ -107,8 +107,7 @@ int run_inspect(const std::vector<std::string>& raw) {
   }
   if (json) std::cout << "]\n";
   if (!json && files.size() > 1)
-    std::cout << "\n" << files.size() - static_cast<std::size_t>(failures) << " of " << files.size()
-              << " files read\n";
+    std::cout << "\n" << files.size() - static_cast<std::size_t>(failures) << " of " << files.size() << " files read\n";
   return failures == 0 ? 0 : 1;
 }
 
