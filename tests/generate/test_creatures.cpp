@@ -2,9 +2,12 @@
 // creature_generator: determinism, topology, ground-truth maps, symmetry, landmarks, option checks.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <set>
+
+#include <Eigen/Geometry>
 
 #include "shapestruct/core/triangle_mesh.hpp"
 #include "shapestruct/generate/creature_generator.hpp"
@@ -84,7 +87,77 @@ double mean_edge_length(const triangle_mesh<double>& m) {
   return sum / (3.0 * static_cast<double>(m.num_faces()));
 }
 
+/// True if segment [p, q] crosses triangle (a, b, c) (Moller-Trumbore, with the segment's end points and the
+/// triangle's border excluded by a small margin so that touching at a shared vertex is not reported).
+bool segment_hits_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a,
+                           const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d d = q - p, e1 = b - a, e2 = c - a, h = d.cross(e2);
+  const double det = e1.dot(h);
+  if (std::abs(det) < 1e-18) return false;
+  const Eigen::Vector3d s = p - a;
+  const double u = s.dot(h) / det;
+  if (u < 1e-9 || u > 1 - 1e-9) return false;
+  const Eigen::Vector3d qv = s.cross(e1);
+  const double v = d.dot(qv) / det;
+  if (v < 1e-9 || u + v > 1 - 1e-9) return false;
+  const double t = e2.dot(qv) / det;
+  return t > 1e-9 && t < 1 - 1e-9;
+}
+
+/// Number of pairs of faces that share no vertex and intersect (uniform-grid broad phase).
+index_t self_intersections(const triangle_mesh<double>& m) {
+  const double cell = 2.0 * mean_edge_length(m);
+  std::map<std::array<long, 3>, std::vector<index_t>> grid;
+  std::vector<Eigen::AlignedBox3d> boxes(static_cast<std::size_t>(m.num_faces()));
+  for (index_t f = 0; f < m.num_faces(); ++f) {
+    auto& bx = boxes[static_cast<std::size_t>(f)];
+    for (int k = 0; k < 3; ++k) bx.extend(m.V.row(m.F(f, k)).transpose());
+    const Eigen::Vector3d lo = bx.min() / cell, hi = bx.max() / cell;
+    for (long x = long(std::floor(lo.x())); x <= long(std::floor(hi.x())); ++x)
+      for (long y = long(std::floor(lo.y())); y <= long(std::floor(hi.y())); ++y)
+        for (long z = long(std::floor(lo.z())); z <= long(std::floor(hi.z())); ++z) grid[{x, y, z}].push_back(f);
+  }
+  std::set<std::pair<index_t, index_t>> hits;
+  for (const auto& [key, faces] : grid)
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      for (std::size_t j = i + 1; j < faces.size(); ++j) {
+        const index_t f = faces[i], g = faces[j];
+        if (!boxes[static_cast<std::size_t>(f)].intersects(boxes[static_cast<std::size_t>(g)])) continue;
+        bool shared = false;
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) shared |= m.F(f, a) == m.F(g, b);
+        if (shared) continue;
+        const auto P = [&](index_t face, int k) -> Eigen::Vector3d { return m.V.row(m.F(face, k % 3)).transpose(); };
+        bool cross = false;
+        for (int k = 0; k < 3 && !cross; ++k)
+          cross = segment_hits_triangle(P(f, k), P(f, k + 1), P(g, 0), P(g, 1), P(g, 2)) ||
+                  segment_hits_triangle(P(g, k), P(g, k + 1), P(f, 0), P(f, 1), P(f, 2));
+        if (cross) hits.insert(std::minmax(f, g));
+      }
+  return static_cast<index_t>(hits.size());
+}
+
 }  // namespace
+
+TEST_CASE("creatures do not self-intersect in their generated poses") {
+  // The coarsest triangulation keeps the brute-force check fast; the pose and proportions do not depend on it.
+  const creature_generator<double> g(17, {.min_resolution = 3, .max_resolution = 3});
+  for (std::uint64_t i = 0; i < 60; ++i) {
+    CAPTURE(i);
+    const auto c = g.generate(i);
+    CHECK(self_intersections(c.mesh) == 0);
+    triangle_mesh<double> rest{c.rest_positions, c.mesh.F};
+    CHECK(self_intersections(rest) == 0);
+  }
+  // The check can fail: two copies of a creature shifted into each other intersect.
+  const auto c = g.generate(0);
+  triangle_mesh<double> both;
+  both.V.resize(2 * c.mesh.num_vertices(), 3);
+  both.V << c.mesh.V, c.mesh.V.rowwise() + Eigen::RowVector3d(0.05, 0.02, 0.01);
+  both.F.resize(2 * c.mesh.num_faces(), 3);
+  both.F << c.mesh.F, c.mesh.F.array() + c.mesh.num_vertices();
+  CHECK(self_intersections(both) > 0);
+}
 
 TEST_CASE("creatures are deterministic per (seed, index) and independent of the thread count") {
   const creature_generator<double> g(7), g_same(7), g_other(8);
