@@ -182,7 +182,7 @@ TEST_CASE("closest_point_query: batch equals single, identical for 1 and 2 threa
   const closest_point_query<double> from_legacy(legacy);
   const closest_point_query<double> from_matrices(gathered.V, gathered.F);
   const closest_point_query<float> single_precision(legacy);
-  const auto Q = random_queries(500, 1.5, 9);
+  const auto Q = random_queries(1500, 1.5, 9);  // >= 1024: the Morton-ordered batch path
   const auto b1 = from_legacy.query_batch(Q, 1);
   const auto b2 = from_legacy.query_batch(Q, 2);
   CHECK(b1.faces == b2.faces);

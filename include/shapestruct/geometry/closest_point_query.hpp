@@ -22,6 +22,7 @@
 #include "shapestruct/core/types.hpp"
 #include "shapestruct/core/validate.hpp"
 #include "shapestruct/knn/detail/knn_parallel.hpp"
+#include "shapestruct/knn/detail/morton_order.hpp"
 
 namespace shapestruct {
 
@@ -222,7 +223,14 @@ class closest_point_query {
     out.bary.resize(Q.rows(), 3);
     out.points.resize(Q.rows(), 3);
     out.sq_distances.resize(Q.rows());
-    detail::knn_parallel_for(Q.rows(), workers, [&](index_t i) {
+    // Queries in Morton order share tree paths with their predecessors (cache hits); answers go to their own
+    // rows, so the result does not depend on the order.
+    std::vector<std::uint32_t> order;
+    if (Q.rows() >= 1024)
+      order = detail::morton_order<3>(static_cast<std::size_t>(Q.rows()),
+                                      [&](std::size_t i, int d) { return Q(static_cast<index_t>(i), d); });
+    detail::knn_parallel_for(Q.rows(), workers, [&](index_t j) {
+      const index_t i = order.empty() ? j : static_cast<index_t>(order[static_cast<std::size_t>(j)]);
       const auto r = query_unchecked(Q.row(i).transpose());
       out.faces[i] = r.location.face;
       out.bary.row(i) = r.location.bary.transpose();

@@ -22,6 +22,7 @@
 #include "shapestruct/core/validate.hpp"
 #include "shapestruct/geometry/detail/eigen_forward.hpp"
 #include "shapestruct/knn/detail/knn_parallel.hpp"
+#include "shapestruct/knn/detail/morton_order.hpp"
 #include "shapestruct/knn/knn_index.hpp"
 
 namespace shapestruct {
@@ -189,7 +190,12 @@ template <class Scalar>
 
   const knn_index<Scalar, 3> index(P);
   std::vector<char> degenerate(static_cast<std::size_t>(n), 0);
-  detail::knn_parallel_for(n, workers, [&](index_t i) {
+  // Points in Morton order: consecutive neighbourhoods overlap, so their points stay in cache. Each point
+  // writes only its own rows, so the order does not change the result.
+  const std::vector<std::uint32_t> order = detail::morton_order<3>(
+      static_cast<std::size_t>(n), [&](std::size_t i, int d) { return P(static_cast<index_t>(i), d); });
+  detail::knn_parallel_for(n, workers, [&](index_t j) {
+    const index_t i = static_cast<index_t>(order[static_cast<std::size_t>(j)]);
     std::vector<std::pair<std::uint32_t, Scalar>> hits;
     double scale2 = double(out.radius) * double(out.radius);
     if (use_k) {

@@ -24,6 +24,7 @@
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/core/types.hpp"
 #include "shapestruct/knn/detail/knn_parallel.hpp"
+#include "shapestruct/knn/detail/morton_order.hpp"
 
 namespace shapestruct {
 
@@ -245,7 +246,7 @@ class knn_index {
     // which stay in cache. Each answer still goes to its own row, so the result is unchanged.
     std::vector<std::uint32_t> order;
     if (Q.rows() >= 1024)
-      order = morton_order(static_cast<std::size_t>(Q.rows()),
+      order = detail::morton_order<Dim>(static_cast<std::size_t>(Q.rows()),
                            [&](std::size_t i, int d) { return Q(static_cast<index_t>(i), d); });
     detail::knn_parallel_for(Q.rows(), workers, [&](index_t j) {
       const index_t i = order.empty() ? j : static_cast<index_t>(order[static_cast<std::size_t>(j)]);
@@ -360,42 +361,11 @@ class knn_index {
         nanoflann::KDTreeSingleIndexAdaptorParams(static_cast<std::size_t>(options.leaf_size)));
   }
 
-  // Order of n points (coordinate d of point i at coord(i, d)) along a Morton (Z-order) curve: 21 bits per
-  // coordinate over the bounding box of the first min(Dim, 3) coordinates, ties by index, so the order is
-  // deterministic. O(n log n).
-  template <class Coord>
-  static std::vector<std::uint32_t> morton_order(std::size_t n, Coord&& coord) {
-    constexpr int used = Dim < 3 ? Dim : 3;
-    std::array<double, used> lo, hi;
-    lo.fill(std::numeric_limits<double>::infinity());
-    hi.fill(-std::numeric_limits<double>::infinity());
-    for (std::size_t i = 0; i < n; ++i)
-      for (int d = 0; d < used; ++d) {
-        lo[std::size_t(d)] = std::min(lo[std::size_t(d)], double(coord(i, d)));
-        hi[std::size_t(d)] = std::max(hi[std::size_t(d)], double(coord(i, d)));
-      }
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      std::uint64_t code = 0;
-      for (int d = 0; d < used; ++d) {
-        const double extent = hi[std::size_t(d)] - lo[std::size_t(d)];
-        const double t = extent > 0 ? (double(coord(i, d)) - lo[std::size_t(d)]) / extent : 0.0;
-        const auto q = static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * double((1u << 21) - 1));
-        for (int b = 0; b < 21; ++b) code |= ((q >> b) & 1u) << (used * b + d);
-      }
-      keys[i] = {code, static_cast<std::uint32_t>(i)};
-    }
-    std::sort(keys.begin(), keys.end());
-    std::vector<std::uint32_t> order(n);
-    for (std::size_t j = 0; j < n; ++j) order[j] = keys[j].second;
-    return order;
-  }
-
   // Stores the points in Morton order so each kd-tree leaf's points are contiguous in memory.
   void spatial_sort() {
     auto& data = impl_->adaptor.data;
     const std::size_t n = data.size() / Dim;
-    impl_->to_input = morton_order(n, [&](std::size_t i, int d) { return data[i * Dim + std::size_t(d)]; });
+    impl_->to_input = detail::morton_order<Dim>(n, [&](std::size_t i, int d) { return data[i * Dim + std::size_t(d)]; });
     std::vector<Scalar> sorted(data.size());
     impl_->to_internal.resize(n);
     for (std::size_t j = 0; j < n; ++j) {
