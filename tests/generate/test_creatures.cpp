@@ -12,6 +12,7 @@
 #include "shapestruct/core/triangle_mesh.hpp"
 #include "shapestruct/generate/creature_generator.hpp"
 #include "shapestruct/generate/creature_map.hpp"
+#include "shapestruct/geometry/mesh_topology.hpp"
 #include "support/legacy_mesh.hpp"
 
 using namespace shapestruct;
@@ -196,6 +197,9 @@ TEST_CASE("creatures are closed genus-0 manifolds without degenerate faces, on b
       CHECK(r.unreferenced == 0);
       CHECK(r.min_area_ratio > 0.01);
     }
+    // The precondition check of the blended-intrinsic-maps pipeline accepts it too (both models).
+    CHECK_NOTHROW((void)require_closed_genus0_manifold(c.mesh, "test"));
+    CHECK_NOTHROW((void)require_closed_genus0_manifold(test::to_legacy(c.mesh), "test"));
     int legs = 0;
     for (int s = 2; s < 8; ++s) legs += c.has_slot[static_cast<std::size_t>(s)];
     leg_counts.insert(legs);
