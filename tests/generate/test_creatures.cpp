@@ -254,6 +254,18 @@ TEST_CASE("ground-truth maps compose to the identity and leave only missing part
   CHECK(ab.unmapped > 0);
   CHECK(ba.unmapped > 0);
   CHECK(worst < 1e-9);
+  // Semantics: each landmark of A that B also has maps next to B's landmark of the same name.
+  index_t shared = 0;
+  for (const auto& fa : a.features)
+    for (const auto& fb : b.features)
+      if (fa.name == fb.name) {
+        CAPTURE(fa.name);
+        const auto& sp = ab.points[static_cast<std::size_t>(fa.vertex)];
+        REQUIRE(sp.valid());
+        CHECK((point_on(b, sp) - fb.position).norm() < 2.0 * face_size(b.mesh, sp.face));
+        ++shared;
+      }
+  CHECK(shared >= 2);  // at least the nose and one pair of feet
 }
 
 TEST_CASE("a creature mapped to a re-triangulation of itself lands on the same surface point") {
