@@ -154,11 +154,17 @@ template <class Scalar>
   return maxima;
 }
 
+/// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
+/// type): forwards to the Eigen::Ref kernel above with Scalar = V's scalar and F cast to index_t. Same
+/// results, exceptions and complexity as the kernel.
 template <detail::geometry_dense_real DV, detail::geometry_dense DF>
 [[nodiscard]] auto average_geodesic_distance(const Eigen::MatrixBase<DV>& V, const Eigen::MatrixBase<DF>& F,
                                              const agd_options& options = {}) {
   return average_geodesic_distance<typename DV::Scalar>(V.derived(), F.derived().template cast<index_t>(), options);
 }
+/// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
+/// type): forwards to the Eigen::Ref kernel above with Scalar = V's scalar and F cast to index_t. Same
+/// results, exceptions and complexity as the kernel.
 template <detail::geometry_dense_real DV, detail::geometry_dense DF, detail::geometry_dense DA>
 [[nodiscard]] auto agd_local_maxima(const Eigen::MatrixBase<DV>& V, const Eigen::MatrixBase<DF>& F,
                                     const Eigen::MatrixBase<DA>& agd, double radius = 0) {

@@ -80,6 +80,9 @@ template <class Scalar>
   return L;
 }
 
+/// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
+/// type): forwards to the Eigen::Ref kernel above with Scalar = V's scalar and F cast to index_t. Same
+/// results, exceptions and complexity as the kernel.
 template <detail::geometry_dense_real DV, detail::geometry_dense DF>
 [[nodiscard]] auto cotan_laplacian(const Eigen::MatrixBase<DV>& V, const Eigen::MatrixBase<DF>& F,
                                    const cotan_laplacian_options& options = {}) {

@@ -32,11 +32,12 @@ namespace shapestruct {
 /// factorisation and is robust to slivers, which is why the blended-maps pipeline uses it for feature points
 /// and AGD.
 ///
-/// Built once per mesh (it copies the CSR graph into a packed adjacency array); all queries are const and
+/// Built once per mesh (it keeps the CSR graph plus a 32-bit copy of its index arrays); all queries are const and
 /// may run concurrently from several threads. Vertices not connected to any source get +infinity.
 ///
-/// Implementation: an indexed 4-ary min-heap with decrease-key over a packed CSR array {neighbour, length};
-/// distances are written straight into the caller's output column. Cost per query O((V + E) log_4 V).
+/// Implementation: an indexed 4-ary min-heap with decrease-key (measured faster here than a lazy 4-ary heap
+/// or a radix heap) over CSR arrays with 32-bit indices; distances are written straight into the caller's
+/// output column. Cost per query O((V + E) log_4 V).
 template <class Scalar = double>
 class dijkstra_geodesics {
  public:
@@ -71,9 +72,8 @@ class dijkstra_geodesics {
     if (n >= index_t(std::numeric_limits<std::int32_t>::max()))
       throw invalid_input(input_error::bad_parameter, no_index,
                           "dijkstra_geodesics: meshes with 2^31 or more vertices are not supported");
-    adj_.resize(graph_.neighbours.size());
-    for (std::size_t k = 0; k < adj_.size(); ++k)
-      adj_[k] = arc{static_cast<std::int32_t>(graph_.neighbours[k]), graph_.lengths[k]};
+    nbr_.resize(graph_.neighbours.size());
+    for (std::size_t k = 0; k < nbr_.size(); ++k) nbr_[k] = static_cast<std::int32_t>(graph_.neighbours[k]);
     off_.resize(graph_.offsets.size());
     for (std::size_t k = 0; k < off_.size(); ++k) off_[k] = static_cast<std::int32_t>(graph_.offsets[k]);
   }
@@ -82,7 +82,9 @@ class dijkstra_geodesics {
   template <SurfaceMesh Mesh>
   explicit dijkstra_geodesics(const Mesh& mesh) : dijkstra_geodesics(from_mesh(mesh)) {}
 
+  /// Number of vertices of the mesh (#V).
   [[nodiscard]] index_t num_vertices() const noexcept { return graph_.num_vertices(); }
+  /// The edge graph the distances are computed on.
   [[nodiscard]] const edge_graph<Scalar>& graph() const noexcept { return graph_; }
 
   /// Edge-graph distance from `source` to every vertex.
@@ -152,6 +154,7 @@ class dijkstra_geodesics {
     push(ws, static_cast<std::int32_t>(source), Scalar(0));
     search(ws, dist.data(), -1, infinity, [](std::int32_t, Scalar) { return true; });
   }
+  /// As above with a fresh workspace (O(V) allocation per call).
   void update_distances(index_t source, Eigen::Ref<vector_x<Scalar>> dist) const {
     workspace ws;
     update_distances(source, dist, ws);
@@ -179,11 +182,6 @@ class dijkstra_geodesics {
   }
 
  private:
-  struct arc {
-    std::int32_t v;
-    Scalar w;
-  };
-
   template <SurfaceMesh Mesh>
   static edge_graph<Scalar> from_mesh(const Mesh& mesh) {
     const auto m = to_triangle_mesh<Scalar>(mesh);
@@ -266,7 +264,8 @@ class dijkstra_geodesics {
   template <class Visit>
   void search(workspace& ws, Scalar* d, std::int32_t target, Scalar radius, Visit&& visit,
               std::vector<std::int32_t>* touched = nullptr) const {
-    const arc* adj = adj_.data();
+    const std::int32_t* nbr = nbr_.data();
+    const Scalar* len = graph_.lengths.data();
     const std::int32_t* off = off_.data();
     while (!ws.heap_.empty()) {
       const auto top = ws.heap_.front();
@@ -275,12 +274,12 @@ class dijkstra_geodesics {
       if (top.key > radius || !visit(top.v, top.key) || top.v == target) break;
       const Scalar du = top.key;
       for (std::int32_t k = off[top.v], end = off[top.v + 1]; k < end; ++k) {
-        const arc a = adj[k];
-        const Scalar nd = du + a.w;
-        if (nd < d[a.v]) {
-          if (touched != nullptr && d[a.v] == infinity) touched->push_back(a.v);
-          d[a.v] = nd;
-          push(ws, a.v, nd);
+        const std::int32_t v = nbr[k];
+        const Scalar nd = du + len[k];
+        if (nd < d[v]) {
+          if (touched != nullptr && d[v] == infinity) touched->push_back(v);
+          d[v] = nd;
+          push(ws, v, nd);
         }
       }
     }
@@ -289,7 +288,7 @@ class dijkstra_geodesics {
   }
 
   edge_graph<Scalar> graph_;
-  std::vector<arc> adj_;
+  std::vector<std::int32_t> nbr_;  // 32-bit copy of graph_.neighbours: 300 KB instead of 600 KB at 12.5K vertices
   std::vector<std::int32_t> off_;
 };
 

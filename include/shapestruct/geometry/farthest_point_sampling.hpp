@@ -107,10 +107,16 @@ template <class Scalar>
   return geodesic_farthest_point_sampling(geo, count, first);
 }
 
+/// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
+/// type): forwards to the Eigen::Ref kernel above with Scalar = V's scalar and F cast to index_t. Same
+/// results, exceptions and complexity as the kernel.
 template <detail::geometry_dense_real DP>
 [[nodiscard]] auto farthest_point_sampling(const Eigen::MatrixBase<DP>& P, index_t count, index_t first = 0) {
   return farthest_point_sampling<typename DP::Scalar>(P.derived(), count, first);
 }
+/// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
+/// type): forwards to the Eigen::Ref kernel above with Scalar = V's scalar and F cast to index_t. Same
+/// results, exceptions and complexity as the kernel.
 template <detail::geometry_dense_real DV, detail::geometry_dense DF>
 [[nodiscard]] auto geodesic_farthest_point_sampling(const Eigen::MatrixBase<DV>& V, const Eigen::MatrixBase<DF>& F,
                                                     index_t count, index_t first = 0) {

@@ -147,7 +147,9 @@ class heat_geodesic_solver {
   explicit heat_geodesic_solver(const Mesh& mesh, const heat_geodesic_options& options = {})
       : heat_geodesic_solver(to_triangle_mesh<Scalar>(mesh), options, 0) {}
 
+  /// ok, or numerical_issue if a factorisation failed (then every query returns +inf distances).
   [[nodiscard]] status info() const noexcept { return info_; }
+  /// Number of vertices (#V).
   [[nodiscard]] index_t num_vertices() const noexcept { return n_; }
   /// The heat time t actually used (time_factor * h^2).
   [[nodiscard]] double time() const noexcept { return t_; }
@@ -166,6 +168,7 @@ class heat_geodesic_solver {
     solve_into(sources, s, out.distance.data());
     return out;
   }
+  /// Single-source version of distances(sources).
   [[nodiscard]] heat_geodesic_result<Scalar> distances(index_t source) const {
     const index_t s[1] = {source};
     return distances(std::span<const index_t>(s, 1));

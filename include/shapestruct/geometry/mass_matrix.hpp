@@ -75,6 +75,9 @@ template <class Scalar>
   return M;
 }
 
+/// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
+/// type): forwards to the Eigen::Ref kernel above with Scalar = V's scalar and F cast to index_t. Same
+/// results, exceptions and complexity as the kernel.
 template <detail::geometry_dense_real DV, detail::geometry_dense DF>
 [[nodiscard]] auto mass_matrix(const Eigen::MatrixBase<DV>& V, const Eigen::MatrixBase<DF>& F,
                                mass_type type = mass_type::barycentric) {

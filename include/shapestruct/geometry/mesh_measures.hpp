@@ -124,32 +124,53 @@ template <class Scalar>
   return static_cast<Scalar>(sum / double(3 * F.rows()));
 }
 
-// ---- Convenience overloads: any dense Eigen (V, F), and any SurfaceMesh / PointSet. ----
+// ---- Convenience overloads: any dense Eigen (V, F), and any SurfaceMesh. ----
 
+/// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
+/// type): forwards to the Eigen::Ref kernel above with Scalar = V's scalar and F cast to index_t. Same
+/// results, exceptions and complexity as the kernel.
 template <detail::geometry_dense_real DV, detail::geometry_dense DF>
 [[nodiscard]] auto face_areas(const Eigen::MatrixBase<DV>& V, const Eigen::MatrixBase<DF>& F) {
   return face_areas<typename DV::Scalar>(V.derived(), F.derived().template cast<index_t>());
 }
+/// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
+/// type): forwards to the Eigen::Ref kernel above with Scalar = V's scalar and F cast to index_t. Same
+/// results, exceptions and complexity as the kernel.
 template <detail::geometry_dense_real DV, detail::geometry_dense DF>
 [[nodiscard]] auto vertex_areas(const Eigen::MatrixBase<DV>& V, const Eigen::MatrixBase<DF>& F) {
   return vertex_areas<typename DV::Scalar>(V.derived(), F.derived().template cast<index_t>());
 }
+/// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
+/// type): forwards to the Eigen::Ref kernel above with Scalar = V's scalar and F cast to index_t. Same
+/// results, exceptions and complexity as the kernel.
 template <detail::geometry_dense_real DV, detail::geometry_dense DF>
 [[nodiscard]] auto face_normals(const Eigen::MatrixBase<DV>& V, const Eigen::MatrixBase<DF>& F) {
   return face_normals<typename DV::Scalar>(V.derived(), F.derived().template cast<index_t>());
 }
+/// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
+/// type): forwards to the Eigen::Ref kernel above with Scalar = V's scalar and F cast to index_t. Same
+/// results, exceptions and complexity as the kernel.
 template <detail::geometry_dense_real DV, detail::geometry_dense DF>
 [[nodiscard]] auto vertex_normals(const Eigen::MatrixBase<DV>& V, const Eigen::MatrixBase<DF>& F) {
   return vertex_normals<typename DV::Scalar>(V.derived(), F.derived().template cast<index_t>());
 }
+/// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
+/// type): forwards to the Eigen::Ref kernel above with Scalar = V's scalar and F cast to index_t. Same
+/// results, exceptions and complexity as the kernel.
 template <detail::geometry_dense_real DV, detail::geometry_dense DF>
 [[nodiscard]] auto total_area(const Eigen::MatrixBase<DV>& V, const Eigen::MatrixBase<DF>& F) {
   return total_area<typename DV::Scalar>(V.derived(), F.derived().template cast<index_t>());
 }
+/// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
+/// type): forwards to the Eigen::Ref kernel above with Scalar = V's scalar and F cast to index_t. Same
+/// results, exceptions and complexity as the kernel.
 template <detail::geometry_dense_real DV>
 [[nodiscard]] auto bounding_box_diagonal(const Eigen::MatrixBase<DV>& V) {
   return bounding_box_diagonal<typename DV::Scalar>(V.derived());
 }
+/// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
+/// type): forwards to the Eigen::Ref kernel above with Scalar = V's scalar and F cast to index_t. Same
+/// results, exceptions and complexity as the kernel.
 template <detail::geometry_dense_real DV, detail::geometry_dense DF>
 [[nodiscard]] auto mean_edge_length(const Eigen::MatrixBase<DV>& V, const Eigen::MatrixBase<DF>& F) {
   return mean_edge_length<typename DV::Scalar>(V.derived(), F.derived().template cast<index_t>());
