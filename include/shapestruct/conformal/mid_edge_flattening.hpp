@@ -205,8 +205,9 @@ class mid_edge_flattening {
         throw invalid_input(input_error::unsupported_topology, hs[s].face,
                             "mid_edge_flattening: edge (" + std::to_string(hs[s].a) + ", " + std::to_string(hs[s].b) +
                                 ") of face " + std::to_string(hs[s].face) +
-                                " is on a boundary; a closed genus-0 surface is required (close small holes first, "
-                                "e.g. blended_matcher_options::close_holes)");
+                                " is on a boundary (the mesh has a hole); a closed genus-0 surface is required: fill "
+                                "small holes first (blended_shape_options::close_small_holes, off by default, or "
+                                "geometry/mesh_repair.hpp close_small_holes)");
       if (e - s > 2)
         throw invalid_input(input_error::non_manifold, hs[s].face,
                             "mid_edge_flattening: edge (" + std::to_string(hs[s].a) + ", " + std::to_string(hs[s].b) +
@@ -246,8 +247,9 @@ class mid_edge_flattening {
       throw invalid_input(input_error::unsupported_topology, first_unreached,
                           "mid_edge_flattening: the mesh has several connected components (face " +
                               std::to_string(first_unreached) +
-                              " is not connected to face 0); keep the largest component first, e.g. "
-                              "blended_matcher_options::keep_largest_component");
+                              " is not connected to face 0 across edges); keep the largest component first "
+                              "(blended_shape_options::keep_largest_component, off by default, or "
+                              "geometry/mesh_repair.hpp keep_largest_component)");
     }
     std::vector<char> used(static_cast<std::size_t>(V.rows()), 0);
     for (index_t f = 0; f < nf; ++f)
@@ -407,6 +409,9 @@ class mid_edge_flattening {
   void build_plane(const Eigen::Ref<const matrix_x3<Scalar>>& V, const Eigen::Ref<const face_matrix>& F,
                    const vector_x<Scalar>& area3) {
     const index_t nv = V.rows(), nf = F.rows();
+    // Vertex images: the mean of the images of the vertex's mid-edges (the centre of its polygon in the
+    // mid-edge mesh). The mid-edge map is non-conforming, so the corner triangles built on this point can
+    // overlap a neighbour's near the cut or a sliver; point location then returns a point within one ring.
     vertex_z_.assign(static_cast<std::size_t>(nv), complex(0));
     std::vector<Scalar> cnt(static_cast<std::size_t>(nv), 0);
     for (index_t e = 0; e < edges_.rows(); ++e)

@@ -1,0 +1,169 @@
+// SPDX-License-Identifier: MIT
+#include <numeric>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <doctest/doctest.h>
+
+#include "blended_fixtures.hpp"
+#include "shapestruct/blended/blended_matcher.hpp"
+#include "shapestruct/core/concepts/pairwise_matcher.hpp"
+#include "shapestruct/eval/geodesic_error.hpp"
+#include "shapestruct/maps/vertex_map.hpp"
+#include "support/fixtures.hpp"
+#include "support/legacy_mesh.hpp"
+
+using namespace shapestruct;
+
+static_assert(PairwiseMatcher<blended_matcher<>, triangle_mesh<double>, test::legacy_mesh>);
+static_assert(CorrespondenceMap<surface_map<double>>);
+static_assert(CorrespondenceMap<vertex_map<double>>);
+
+namespace {
+blended_matcher_options small_options() {
+  blended_matcher_options o;
+  o.shape.num_samples = 128;  // a 2,562-vertex test shape does not need 256 samples
+  o.threads = 2;
+  return o;
+}
+
+/// Mean geodesic error (benchmark normalisation, d / (2 sqrt(area))) of a map against the truth truth[v].
+double mean_error(const blended_shape<double>& target, const surface_map<double>& map, const std::vector<index_t>& truth,
+                  index_t stride = 7) {
+  std::vector<index_t> pred, tru;
+  for (index_t v = 0; v < map.source_size(); v += stride) {
+    pred.push_back(map.target_vertex(v));
+    tru.push_back(truth[static_cast<std::size_t>(v)]);
+  }
+  const auto e = geodesic_errors(target.geodesics(), std::span<const index_t>(pred), std::span<const index_t>(tru), 2.0);
+  return summarize_errors(std::span<const double>(e)).mean;
+}
+}  // namespace
+
+TEST_CASE("blended_matcher: a shape matched to itself gives the identity (triangle_mesh and legacy_mesh)") {
+  const auto m = test::armed_sphere(4);
+  const blended_matcher<> matcher(small_options());
+  std::vector<index_t> id(static_cast<std::size_t>(m.V.rows()));
+  std::iota(id.begin(), id.end(), index_t(0));
+  const auto r = matcher.match(m, m);
+  CHECK(r.info == status::ok);
+  CHECK(r.candidates.size() > 0);
+  CHECK(r.blended.size() >= 1);
+  const auto sm = matcher.prepare(m);
+  CHECK(sm.features().size() >= 4);  // the arm tips
+  CHECK(mean_error(sm, r.map, id) < 0.01);
+
+  const auto legacy = test::to_legacy(m);
+  const auto r2 = matcher.match(legacy, legacy);
+  CHECK(mean_error(sm, r2.map, id) < 0.01);
+}
+
+TEST_CASE("blended_matcher: a rigidly moved, vertex-permuted copy is matched up to the permutation") {
+  const auto m = test::armed_sphere(4);
+  std::vector<index_t> perm;
+  const auto moved = test::moved_and_permuted(m, perm);
+  const blended_matcher<> matcher(small_options());
+  const auto r = matcher.match(m, moved);
+  const auto target = matcher.prepare(moved);
+  CHECK(mean_error(target, r.map, perm) < 0.01);
+  // Every source vertex is mapped, to a valid surface point.
+  for (index_t v = 0; v < r.map.source_size(); ++v) {
+    REQUIRE(r.map.point(v).valid());
+    CHECK(r.map.target_vertex(v) >= 0);
+    CHECK(r.map.target_vertex(v) < moved.V.rows());
+  }
+}
+
+TEST_CASE("blended_matcher: results do not depend on the thread count") {
+  const auto m = test::armed_sphere(3);
+  std::vector<index_t> perm;
+  const auto moved = test::moved_and_permuted(m, perm);
+  auto o1 = small_options();
+  o1.threads = 1;
+  auto o3 = small_options();
+  o3.threads = 3;
+  const auto r1 = blended_matcher<>(o1).match(m, moved);
+  const auto r3 = blended_matcher<>(o3).match(m, moved);
+  REQUIRE(r1.map.source_size() == r3.map.source_size());
+  for (index_t v = 0; v < r1.map.source_size(); ++v) {
+    CHECK(r1.map.target_vertex(v) == r3.map.target_vertex(v));
+    CHECK(r1.map.point(v).bary.isApprox(r3.map.point(v).bary, 0.0));
+  }
+  CHECK(r1.selected == r3.selected);
+}
+
+TEST_CASE("blended_matcher keeps every candidate blended map with its score and picks the best") {
+  const auto m = test::armed_sphere(3);
+  const auto r = blended_matcher<>(small_options()).match(m, m);
+  REQUIRE(r.selected >= 0);
+  for (const auto& b : r.blended) {
+    CHECK(b.score >= 0);
+    CHECK(b.score <= 1);
+    CHECK(b.score <= r.blended[static_cast<std::size_t>(r.selected)].score);
+    CHECK(b.map.source_size() == m.V.rows());
+  }
+  CHECK(r.confidence.rows() == static_cast<index_t>(r.candidates.size()));
+  CHECK(r.confidence.minCoeff() >= 0);
+  CHECK(r.confidence.maxCoeff() <= 1);
+}
+
+TEST_CASE("blended_matcher rejects meshes that are not closed genus-0 manifolds, naming the repair option") {
+  const blended_matcher<> matcher(small_options());
+  const auto good = test::armed_sphere(2);
+  auto reason = [&](const triangle_mesh<double>& bad) -> std::optional<invalid_input> {
+    try {
+      (void)matcher.match(bad, good);
+    } catch (const invalid_input& e) {
+      return e;
+    }
+    return std::nullopt;
+  };
+  SUBCASE("holes") {
+    auto open = good;
+    open.F.conservativeResize(open.F.rows() - 1, 3);  // remove one face: a 3-edge hole
+    const auto e = reason(open);
+    REQUIRE(e.has_value());
+    CHECK(e->reason() == input_error::unsupported_topology);
+    CHECK(std::string(e->what()).find("close_small_holes") != std::string::npos);
+    auto o = small_options();
+    o.shape.close_small_holes = true;
+    CHECK_NOTHROW((void)blended_matcher<>(o).match(open, good));
+  }
+  SUBCASE("higher genus") {
+    const auto e = reason(make_torus<double>(1.0, 0.4, 16, 10));
+    REQUIRE(e.has_value());
+    CHECK(e->reason() == input_error::unsupported_topology);
+  }
+  SUBCASE("several components") {
+    const auto e = reason(test::two_copies(good));
+    REQUIRE(e.has_value());
+    CHECK(e->reason() == input_error::unsupported_topology);
+    CHECK(std::string(e->what()).find("keep_largest_component") != std::string::npos);
+    auto o = small_options();
+    o.shape.keep_largest_component = true;
+    const auto r = blended_matcher<>(o).match(test::two_copies(good), good);
+    // vertices of the dropped copy are unmapped, the kept copy is mapped
+    CHECK(r.map.source_size() == 2 * good.V.rows());
+    CHECK(r.map.target_vertex(0) != no_index);
+    CHECK(r.map.target_vertex(good.V.rows()) == no_index);
+  }
+  SUBCASE("non-manifold edge") {
+    const auto e = reason(test::fin<double>());
+    REQUIRE(e.has_value());
+    CHECK(e->reason() == input_error::non_manifold);
+  }
+  SUBCASE("empty, non-finite, bad face") {
+    CHECK(reason(test::with_nan_vertex<double>())->reason() == input_error::non_finite);
+    CHECK(reason(test::with_bad_index<double>())->reason() == input_error::bad_face);
+    triangle_mesh<double> empty;
+    empty.V.resize(0, 3);
+    empty.F.resize(0, 3);
+    CHECK(reason(empty)->reason() == input_error::empty);
+  }
+  SUBCASE("bad parameter") {
+    auto o = small_options();
+    o.shape.num_samples = 1;
+    CHECK_THROWS_AS((void)blended_matcher<>(o).match(good, good), invalid_input);
+  }
+}
