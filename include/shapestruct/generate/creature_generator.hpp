@@ -162,6 +162,7 @@ struct limb_pose {
 /// Everything that defines a creature's geometry.
 struct body {
   double width = 0.42, height = 0.34, length = 1.05, splay = 0.15;
+  double taper_width = 0, taper_height = 0;  // relative change of width / height from the middle to the back
   std::array<bool, creature_slot_count> present{};
   std::array<limb_shape, creature_slot_count> shape{};
   std::array<limb_pose, creature_slot_count> rest{}, pose{};
@@ -194,7 +195,10 @@ inline std::vector<Eigen::Vector3d> cage_positions(const cage_template& t, const
     // Halfway between the box and its projection on the sphere: a rounded box, so that Catmull-Clark gives
     // an egg-shaped torso with flat-enough quads for the limbs to attach to.
     const Eigen::Vector3d p = 0.55 * box + 0.45 * box.normalized();
-    X[static_cast<std::size_t>(v)] = Eigen::Vector3d(b.width * p.x(), b.height * p.y(), b.length * p.z());
+    // Tapering scales x and y by a function of z only, so the torso stays mirror-symmetric in x.
+    const double zn = box.z();
+    X[static_cast<std::size_t>(v)] = Eigen::Vector3d(b.width * (1 + b.taper_width * zn) * p.x(),
+                                                     b.height * (1 + b.taper_height * zn) * p.y(), b.length * p.z());
   }
   const Eigen::Vector3d ex = Eigen::Vector3d::UnitX(), ey = Eigen::Vector3d::UnitY();
   const Eigen::Matrix3d M = Eigen::Vector3d(-1, 1, 1).asDiagonal();
@@ -265,6 +269,8 @@ inline body sample_body(shape_rng& rng, const creature_options& o) {
   // Six legs need a longer torso so that swung legs of neighbouring rows cannot touch.
   b.length = pairs == 3 ? rng.uniform(1.05, 1.35) : rng.uniform(0.85, 1.3);
   b.splay = rng.uniform(0.05, 0.3);
+  b.taper_width = rng.uniform(-0.2, 0.2);
+  b.taper_height = rng.uniform(-0.2, 0.2);
   b.present[0] = true;
   b.present[1] = rng.chance(o.tail_probability);
   const bool rows[3] = {pairs >= 2, pairs != 2, pairs >= 2};  // 1 pair: middle; 2: front+back; 3: all
@@ -274,12 +280,14 @@ inline body sample_body(shape_rng& rng, const creature_options& o) {
   // Head.
   {
     limb_shape& h = b.shape[0];
-    h.l1 = rng.uniform(0.12, 0.3);
+    h.l1 = rng.uniform(0.15, 0.3);
     h.l2 = rng.uniform(0.14, 0.22);
     const double neck = rng.uniform(0.08, 0.11);
     h.radius = {neck, 0.9 * neck, 1.25 * h.l2, 0.7 * h.l2};
-    b.rest[0] = {0.0, rng.uniform(-0.5, -0.1), 0.0};
-    b.pose[0] = {v * rng.uniform(-0.3, 0.3), b.rest[0].bend + v * rng.uniform(-0.3, 0.3), v * rng.uniform(-0.5, 0.5)};
+    // Pitch limits keep the head bulb off the chest: a short neck and a head bent down by more than about
+    // 0.7 rad made the head touch the torso (1 creature in 400 before these bounds).
+    b.rest[0] = {0.0, rng.uniform(-0.4, -0.05), 0.0};
+    b.pose[0] = {v * rng.uniform(-0.25, 0.25), b.rest[0].bend + v * rng.uniform(-0.25, 0.25), v * rng.uniform(-0.5, 0.5)};
   }
   // Tail.
   {
@@ -581,7 +589,7 @@ class creature_generator {
       c.mesh.V.row(v) = posed.evaluate(cp.patch, cp.u, cp.v).template cast<Scalar>().transpose();
       c.rest_positions.row(v) = rest.evaluate(cp.patch, cp.u, cp.v).template cast<Scalar>().transpose();
     }
-    flip_edges(tris, tri_patch, tri_uv, c.mesh.V, rng, flip_fraction);
+    flip_edges(tris, tri_patch, tri_uv, c.mesh.V, c.rest_positions, rng, flip_fraction);
 
     const index_t nf = static_cast<index_t>(tris.size());
     c.mesh.F.resize(nf, 3);
@@ -615,8 +623,8 @@ class creature_generator {
   /// Flips a random subset of the edges whose two triangles lie in one patch, when the quad around the edge
   /// is strictly convex in (u, v) (so the new triangles are proper) and the 3D triangles keep their facing.
   static void flip_edges(std::vector<std::array<index_t, 3>>& tris, const std::vector<index_t>& tri_patch,
-                         std::vector<std::array<double, 6>>& tri_uv, const matrix_x3<Scalar>& V, shape_rng& rng,
-                         double fraction) {
+                         std::vector<std::array<double, 6>>& tri_uv, const matrix_x3<Scalar>& V,
+                         const matrix_x3<Scalar>& V_rest, shape_rng& rng, double fraction) {
     if (fraction <= 0) return;
     const auto key = [](index_t a, index_t b) {
       if (a > b) std::swap(a, b);
@@ -646,10 +654,15 @@ class creature_generator {
     const auto area2 = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
       return (b - a).x() * (c - a).y() - (c - a).x() * (b - a).y();
     };
-    const auto normal = [&](index_t a, index_t b, index_t c) -> Eigen::Vector3d {
-      const Eigen::Vector3d pa = V.row(a).transpose().template cast<double>(), pb = V.row(b).transpose().template cast<double>(),
-                            pc = V.row(c).transpose().template cast<double>();
+    const auto normal = [](const matrix_x3<Scalar>& P, index_t a, index_t b, index_t c) -> Eigen::Vector3d {
+      const Eigen::Vector3d pa = P.row(a).transpose().template cast<double>(), pb = P.row(b).transpose().template cast<double>(),
+                            pc = P.row(c).transpose().template cast<double>();
       return (pb - pa).cross(pc - pa);
+    };
+    // A flip must keep the facing in the pose *and* in the rest pose (the same connectivity serves both).
+    const auto keeps_facing = [&](const matrix_x3<Scalar>& P, index_t a, index_t b, index_t c, index_t d) {
+      const Eigen::Vector3d n_old = normal(P, a, b, c) + normal(P, b, a, d);
+      return normal(P, c, a, d).dot(n_old) > 0 && normal(P, c, d, b).dot(n_old) > 0;
     };
     for (std::size_t i = 0; i < todo; ++i) {
       const auto it = edge_faces.find(keys[i]);
@@ -668,8 +681,7 @@ class creature_generator {
       const double old_area = area2(ua, ub, uc) + area2(ub, ua, ud);
       // Both new triangles must keep at least 10% of the quad's area: strictly convex, not nearly degenerate.
       if (area2(uc, ua, ud) < 0.1 * old_area || area2(uc, ud, ub) < 0.1 * old_area) continue;
-      const Eigen::Vector3d n_old = normal(a, b, c) + normal(b, a, d);
-      if (normal(c, a, d).dot(n_old) <= 0 || normal(c, d, b).dot(n_old) <= 0) continue;
+      if (!keeps_facing(V, a, b, c, d) || !keeps_facing(V_rest, a, b, c, d)) continue;
       tris[f0] = {c, a, d};
       tris[f1] = {c, d, b};
       tri_uv[f0] = {uc.x(), uc.y(), ua.x(), ua.y(), ud.x(), ud.y()};
