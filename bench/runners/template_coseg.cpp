@@ -84,7 +84,10 @@ int main(int argc, char** argv) {
     // Part ids (not shared output labels) are what the automatic templates learn; user templates group parts.
     const std::vector<index_t>& lab = tpl_path.empty() ? f.fit.parts : f.fit.labels;
     (void)tp;
-    scored[i].predicted = project_labels_to_faces(meshes[i], samples[i], lab);
+    bool any = false;
+    for (const auto l : lab) any = any || l >= 0;
+    scored[i].predicted = any ? project_labels_to_faces(meshes[i], samples[i], lab)
+                              : std::vector<index_t>(static_cast<std::size_t>(meshes[i].F.rows()), -1);
     auto gt = read_segmentation(dir / "gt" / (files[i].stem().string() + ".seg"), meshes[i].F.rows());
     for (auto& g : gt) g -= 1;  // COSEG labels are 1-based
     scored[i].truth = gt;

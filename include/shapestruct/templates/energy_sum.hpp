@@ -71,7 +71,7 @@ using chapter5_energy = energy_sum<distance_term, feature_term, deformation_term
 
 /// chapter5_energy with the chapter's weights.
 inline chapter5_energy make_chapter5_energy(double alpha = 0.5, double beta = 2, double gamma = 2) {
-  return chapter5_energy(distance_term{1.0}, feature_term{gamma, 1.0}, deformation_term{alpha},
+  return chapter5_energy(distance_term{1.0, 0.1}, feature_term{gamma, 1.0}, deformation_term{alpha},
                          smoothness_term{beta});
 }
 

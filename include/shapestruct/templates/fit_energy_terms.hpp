@@ -92,13 +92,20 @@ struct fit_state {
 struct distance_term {
   using scalar_type = double;
   double weight = 1;
+  /// Distance (canonical units) charged to a null-labeled point. The chapter charges 0 and relies on the
+  /// feature penalty; with learned (tight) feature Gaussians that made the null label win for most points, so
+  /// a point is only an outlier when it is farther than this from every part (or its features are very off).
+  double null_distance = 0.1;
 
   [[nodiscard]] double value(const fit_state& x) const {
     const double u2 = x.distance_unit * x.distance_unit;
     double s2t = 0, t2s = 0;
     index_t ns = 0, nt = 0;
     for (std::size_t i = 0; i < x.labels.size(); ++i) {
-      if (x.labels[i] >= x.num_parts()) continue;  // null: no distance penalty
+      if (x.labels[i] >= x.num_parts()) {
+        s2t += null_distance * null_distance;
+        continue;
+      }
       s2t += x.closest_on_box(x.labels[i], x.p.row(static_cast<index_t>(i)).transpose()).second;
       ++ns;
     }
@@ -114,8 +121,10 @@ struct distance_term {
   /// Adds per-point costs (#P x (K+1)), times the point weight.
   void accumulate_unary(const fit_state& x, Eigen::MatrixXd& U) const {
     const double inv = x.point_weight * weight / (x.distance_unit * x.distance_unit);
-    for (index_t i = 0; i < U.rows(); ++i)
+    for (index_t i = 0; i < U.rows(); ++i) {
       for (index_t b = 0; b < x.num_parts(); ++b) U(i, b) += inv * x.closest_on_box(b, x.p.row(i).transpose()).second;
+      U(i, x.null_label()) += inv * null_distance * null_distance;
+    }
   }
   /// Adds data rows (weight w, unit coordinate u, observed box-frame coordinate o) to every part-axis system.
   void accumulate_regression(const fit_state& x, std::vector<std::array<part_axis_system, 3>>& sys) const {

@@ -41,7 +41,7 @@ struct template_learner_options {
   double cluster_distance = 3;   ///< complete-linkage merge threshold, in template standard deviations (RMS z)
   double prior_weight = 2;     ///< pseudo-observations of the previous Gaussian when re-estimating
   double min_sigma = 0.01;     ///< floor of learned position / size standard deviations (canonical units)
-  double min_feature_sigma = 0.03;  ///< floor of learned feature standard deviations
+  double min_feature_sigma = 0.1;  ///< floor of learned feature standard deviations
   std::uint64_t seed = 1;      ///< random half of the fitting set
   /// Called after each learning iteration with (iteration, #templates, learning-set size); may be empty.
   std::function<void(int, std::size_t, std::size_t)> progress;
