@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
   std::vector<std::pair<double, std::string>> slow;
   int done = 0, failed = 0;
   std::map<std::string, triangle_mesh<double>> mesh_cache;
-  auto load = [&](const bim_mesh_ref& m) -> const triangle_mesh<double>& {
+  auto load = [&](const bim_mesh_ref& m) -> triangle_mesh<double> {
     const std::string p = (data / m.relative_path()).string();
     auto it = mesh_cache.find(p);
     if (it == mesh_cache.end()) {
@@ -152,8 +152,11 @@ int main(int argc, char** argv) {
     const std::string name = pr.source.name() + "_to_" + pr.target.name();
     std::string status = "ok";
     try {
-      const auto& A = load(pr.source);
-      const auto& B = load(pr.target);
+      const auto A = load(pr.source);
+      const auto B = load(pr.target);
+      if (info.dense && A.V.rows() != B.V.rows())
+        throw std::runtime_error("no dense ground truth: the meshes are not template-aligned (" +
+                                 std::to_string(A.V.rows()) + " and " + std::to_string(B.V.rows()) + " vertices)");
       const auto t0 = std::chrono::steady_clock::now();
       const auto sa = matcher.prepare(A);
       const auto sb = matcher.prepare(B);
