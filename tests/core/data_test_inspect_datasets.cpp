@@ -55,6 +55,11 @@ TEST_CASE("inspect data: SCAPE mesh000 is a sphere pinched at one vertex") {
     CHECK(ex.reason() == input_error::non_manifold);
     CHECK(ex.element() == 419);
   }
+  // giving the second fan its own vertex makes it a sphere, keeping all 12,500 vertex ids
+  const auto split = split_non_manifold_vertices(mf.mesh);
+  CHECK(split.split_vertices == 1);
+  CHECK(split.mesh.V.rows() == 12501);
+  CHECK_NOTHROW((void)require_closed_genus0_manifold(split.mesh, "data_test"));
 }
 
 TEST_CASE("inspect data: FAUST registration is a closed genus-0 manifold") {

@@ -231,3 +231,68 @@ TEST_CASE("merge_duplicate_vertices: invalid input") {
   expect_reason(input_error::bad_face, 3, [] { (void)merge_duplicate_vertices(test::with_bad_index()); });
   expect_reason(input_error::empty, no_index, [] { (void)merge_duplicate_vertices(triangle_mesh<double>{}); });
 }
+
+TEST_CASE("split_non_manifold_vertices separates a bowtie") {
+  on_both_models(test::bowtie(), [](const auto& mesh, double tol) {
+    const auto r = split_non_manifold_vertices(mesh);
+    CHECK(r.split_vertices == 1);
+    REQUIRE(r.copied_from.size() == 1);
+    CHECK(r.copied_from(0) == 0);
+    CHECK(r.mesh.V.rows() == 6);
+    CHECK(r.mesh.F(0, 0) == 0);  // the first fan (face 0) keeps vertex 0
+    CHECK(r.mesh.F(1, 0) == 5);  // the second fan moves to the copy
+    CHECK((r.mesh.V.row(5) - r.mesh.V.row(0)).norm() < tol);
+    const auto rep = check_mesh(r.mesh);
+    CHECK(rep.num_non_manifold_vertices == 0);
+    CHECK(rep.num_components == 2);
+  });
+}
+
+TEST_CASE("split_non_manifold_vertices turns a pinched sphere back into a sphere") {
+  // Glue vertex `far` of an icosphere onto vertex 0 (its antipode): one piece, one non-manifold vertex,
+  // Euler characteristic 1 -- the shape of the SCAPE template meshes.
+  const auto ico = make_icosphere(1);
+  index_t far = 0;
+  for (index_t v = 1; v < ico.V.rows(); ++v)
+    if ((ico.V.row(v) - ico.V.row(0)).norm() > (ico.V.row(far) - ico.V.row(0)).norm()) far = v;
+  triangle_mesh<double> pinched;
+  pinched.V.resize(ico.V.rows() - 1, 3);
+  index_t g = 0;
+  for (index_t v = 0; v < ico.V.rows(); ++v)
+    if (v != far) pinched.V.row(g++) = ico.V.row(v);
+  pinched.V.row(0) = Eigen::RowVector3d::Zero();
+  pinched.F = ico.F;
+  for (index_t f = 0; f < ico.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const index_t v = ico.F(f, k);
+      pinched.F(f, k) = v == far ? 0 : (v > far ? v - 1 : v);
+    }
+  const auto before = check_mesh(pinched);
+  REQUIRE(before.num_non_manifold_vertices == 1);
+  REQUIRE(before.euler_characteristic == 1);
+  on_both_models(pinched, [&](const auto& mesh, double) {
+    const auto r = split_non_manifold_vertices(mesh);
+    CHECK(r.split_vertices == 1);
+    CHECK(r.mesh.V.rows() == ico.V.rows());
+    // untouched faces keep their indices
+    index_t changed = 0;
+    for (index_t f = 0; f < pinched.F.rows(); ++f) changed += (r.mesh.F.row(f) != pinched.F.row(f)) ? 1 : 0;
+    CHECK(changed == 5);  // the five faces of one fan around the glued vertex (valence 5 on an icosphere)
+    CHECK(check_mesh(r.mesh).is_closed_genus0_manifold());
+  });
+}
+
+TEST_CASE("split_non_manifold_vertices leaves manifold meshes and fins alone") {
+  const auto oct = test::octahedron();
+  const auto r = split_non_manifold_vertices(oct);
+  CHECK(r.split_vertices == 0);
+  CHECK(r.mesh.F == oct.F);
+  CHECK(r.mesh.V == oct.V);
+  CHECK(split_non_manifold_vertices(test::fin()).split_vertices == 0);
+}
+
+TEST_CASE("split_non_manifold_vertices: invalid input") {
+  expect_reason(input_error::non_finite, 2, [] { (void)split_non_manifold_vertices(test::with_nan_vertex()); });
+  expect_reason(input_error::bad_face, 3, [] { (void)split_non_manifold_vertices(test::with_bad_index()); });
+  expect_reason(input_error::empty, no_index, [] { (void)split_non_manifold_vertices(triangle_mesh<double>{}); });
+}

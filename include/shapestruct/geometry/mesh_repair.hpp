@@ -15,6 +15,7 @@
 #include "shapestruct/core/triangle_mesh.hpp"
 #include "shapestruct/core/types.hpp"
 #include "shapestruct/core/validate.hpp"
+#include "shapestruct/detail/disjoint_sets.hpp"
 #include "shapestruct/geometry/connected_components.hpp"
 
 namespace shapestruct {
@@ -38,6 +39,15 @@ struct hole_filling_result {
   index_t added_vertices = 0;
   index_t added_faces = 0;
   index_t longest_loop_left = 0;  ///< the length (edges) of the longest loop left open, 0 if none
+};
+
+/// Result of split_non_manifold_vertices(): old vertices keep their indices, the copies are appended.
+template <class Scalar>
+struct vertex_split_result {
+  triangle_mesh<Scalar> mesh;
+  /// For each appended vertex (index #V_old + i), the old vertex it copies.
+  Eigen::Matrix<index_t, Eigen::Dynamic, 1> copied_from;
+  index_t split_vertices = 0;  ///< old vertices that had more than one fan
 };
 
 namespace detail {
@@ -198,6 +208,93 @@ template <SurfaceMesh Mesh>
   using S = mesh_scalar_t<Mesh>;
   return detail::on_canonical<S>(
       mesh, [&](const auto& V, const auto& F) { return merge_duplicate_vertices_kernel<S>(V, F); });
+}
+
+// -------------------------------------------------------------------------------- split_non_manifold_vertices
+
+/// Kernel of split_non_manifold_vertices(). \param V #V x 3, \param F #F x 3 (validated here).
+template <class Scalar>
+vertex_split_result<Scalar> split_non_manifold_vertices_kernel(const Eigen::Ref<const matrix_x3<Scalar>>& V,
+                                                               const Eigen::Ref<const face_matrix>& F) {
+  validate_mesh(V, F, "split_non_manifold_vertices");
+  const index_t n = V.rows(), m = F.rows();
+  // Corners 3 f + k of one vertex are joined when their faces share an edge at that vertex; each resulting
+  // class is one fan (the same construction check_mesh uses to count non-manifold vertices).
+  struct side {
+    index_t lo, hi, corner_lo, corner_hi;
+  };
+  std::vector<side> sides;
+  sides.reserve(static_cast<std::size_t>(3 * m));
+  for (index_t f = 0; f < m; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int k2 = (k + 1) % 3;
+      const index_t s = F(f, k), t = F(f, k2);
+      if (s < t)
+        sides.push_back({s, t, 3 * f + k, 3 * f + k2});
+      else
+        sides.push_back({t, s, 3 * f + k2, 3 * f + k});
+    }
+  std::sort(sides.begin(), sides.end(),
+            [](const side& a, const side& b) { return a.lo != b.lo ? a.lo < b.lo : a.hi < b.hi; });
+  detail::disjoint_sets corners(3 * m);
+  for (std::size_t i = 0; i < sides.size();) {
+    std::size_t j = i + 1;
+    while (j < sides.size() && sides[j].lo == sides[i].lo && sides[j].hi == sides[i].hi) {
+      corners.unite(sides[i].corner_lo, sides[j].corner_lo);
+      corners.unite(sides[i].corner_hi, sides[j].corner_hi);
+      ++j;
+    }
+    i = j;
+  }
+  // The fan met first (in face order) keeps the vertex; every other fan gets an appended copy.
+  std::vector<index_t> first_fan(static_cast<std::size_t>(n), no_index);
+  std::vector<index_t> copy_of_fan(static_cast<std::size_t>(3 * m), no_index);
+  std::vector<index_t> copied_from;
+  std::vector<char> was_split(static_cast<std::size_t>(n), 0);
+  vertex_split_result<Scalar> out;
+  out.mesh.F = F;
+  for (index_t f = 0; f < m; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const index_t v = F(f, k), fan = corners.find(3 * f + k);
+      index_t& first = first_fan[static_cast<std::size_t>(v)];
+      if (first == no_index) first = fan;
+      if (first == fan) continue;
+      index_t& copy = copy_of_fan[static_cast<std::size_t>(fan)];
+      if (copy == no_index) {
+        copy = n + static_cast<index_t>(copied_from.size());
+        copied_from.push_back(v);
+        if (!was_split[static_cast<std::size_t>(v)]) {
+          was_split[static_cast<std::size_t>(v)] = 1;
+          ++out.split_vertices;
+        }
+      }
+      out.mesh.F(f, k) = copy;
+    }
+  const index_t added = static_cast<index_t>(copied_from.size());
+  out.mesh.V.resize(n + added, 3);
+  out.mesh.V.topRows(n) = V;
+  out.copied_from.resize(added);
+  for (index_t i = 0; i < added; ++i) {
+    out.copied_from(i) = copied_from[static_cast<std::size_t>(i)];
+    out.mesh.V.row(n + i) = V.row(out.copied_from(i));
+  }
+  return out;
+}
+
+/// Gives every fan of a non-manifold ("bowtie") vertex its own vertex: the fan met first in face order keeps
+/// the original index, each other fan is re-attached to an appended copy at the same position. Old vertex
+/// indices (e.g. dense ground-truth correspondences) therefore stay valid. A sphere pinched at a vertex (every
+/// SCAPE template mesh, at vertex 419) becomes a closed genus-0 manifold. Non-manifold edges are left as they
+/// are. The copies coincide with their originals, so merge_duplicate_vertices() would undo this.
+/// \param mesh any SurfaceMesh
+/// \throws invalid_input empty / non_finite / bad_face (validate_mesh)
+/// \returns the mesh, the source of each appended vertex and how many vertices were split
+/// Complexity: O(F log F + V).
+template <SurfaceMesh Mesh>
+[[nodiscard]] vertex_split_result<mesh_scalar_t<Mesh>> split_non_manifold_vertices(const Mesh& mesh) {
+  using S = mesh_scalar_t<Mesh>;
+  return detail::on_canonical<S>(
+      mesh, [&](const auto& V, const auto& F) { return split_non_manifold_vertices_kernel<S>(V, F); });
 }
 
 // ----------------------------------------------------------------------------------------- close_small_holes

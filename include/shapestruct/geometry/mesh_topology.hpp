@@ -79,8 +79,8 @@ mesh_report require_closed_genus0_manifold(const Eigen::MatrixBase<DerivedV>& V,
                         pre + "vertex " + std::to_string(v) +
                             " joins several fans of faces that share no edge there (a bowtie; " +
                             std::to_string(r.num_non_manifold_vertices) +
-                            " such vertices); no automatic repair exists: split the vertex, or if the fans belong "
-                            "to separate pieces run keep_largest_component()");
+                            " such vertices); split_non_manifold_vertices() gives each fan its own vertex (appended, "
+                            "existing indices unchanged)");
   }
   if (r.num_boundary_edges > 0) {
     const auto& e = r.boundary_edge_examples.front();
