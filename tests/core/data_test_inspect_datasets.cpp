@@ -3,6 +3,7 @@
 // (scripts/independent_mesh_count.py; see docs/inspect.md). Only numbers are stored here, never mesh data.
 #include <doctest/doctest.h>
 
+#include <cstdio>
 #include <string>
 
 #include "shapestruct/core/check_mesh.hpp"
@@ -60,6 +61,25 @@ TEST_CASE("inspect data: SCAPE mesh000 is a sphere pinched at one vertex") {
   CHECK(split.split_vertices == 1);
   CHECK(split.mesh.V.rows() == 12501);
   CHECK_NOTHROW((void)require_closed_genus0_manifold(split.mesh, "data_test"));
+}
+
+TEST_CASE("inspect data: every SCAPE template mesh is pinched at vertex 419 and split into a sphere") {
+  SHAPESTRUCT_REQUIRE_DATA(dir, "SCAPE");
+  int template_meshes = 0;
+  for (int id = 0; id <= 73; ++id) {
+    char name[32];
+    std::snprintf(name, sizeof name, "Meshes/mesh%03d.off", id);
+    const auto mf = read_mesh(dir / name);
+    if (mf.mesh.num_vertices() != 12500) continue;  // mesh051, 071, 073 are not template-aligned
+    ++template_meshes;
+    INFO(name);
+    const auto r = check_mesh(mf.mesh);
+    CHECK(r.num_non_manifold_vertices == 1);
+    CHECK(r.non_manifold_vertex_examples.at(0) == 419);
+    CHECK(r.num_boundary_edges == 0);
+    CHECK(check_mesh(split_non_manifold_vertices(mf.mesh).mesh).is_closed_genus0_manifold());
+  }
+  CHECK(template_meshes == 71);
 }
 
 TEST_CASE("inspect data: FAUST registration is a closed genus-0 manifold") {
