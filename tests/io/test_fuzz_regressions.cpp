@@ -32,7 +32,7 @@ const std::map<std::string, reader_fn>& readers() {
   return r;
 }
 
-/// Success or io_error, within a generous time bound; the result, if any, is self-consistent.
+/// Success or io_error, within a generous hang guard; the result, if any, is self-consistent.
 void replay(const reader_fn& read, const std::string& bytes, const std::string& name) {
   CAPTURE(name);
   const auto start = std::chrono::steady_clock::now();
@@ -47,7 +47,8 @@ void replay(const reader_fn& read, const std::string& bytes, const std::string& 
   } catch (const io_error& e) {
     CHECK(!std::string(e.what()).empty());
   }
-  CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(2));
+  // A hang guard for sanitizer builds on loaded machines; the fuzzers enforce 1 s per input in their own runs.
+  CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(10));
 }
 
 std::size_t replay_folder(const std::string& kind) {
