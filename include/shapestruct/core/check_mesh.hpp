@@ -71,7 +71,8 @@ struct mesh_report {
   index_t num_boundary_loops = 0;
   index_t num_non_manifold_edges = 0;
   index_t num_non_manifold_vertices = 0;
-  index_t num_degenerate_faces = 0;  ///< zero area (see check_mesh_options) or a repeated vertex index
+  index_t num_degenerate_faces = 0;      ///< zero area (see check_mesh_options) or a repeated vertex index
+  index_t num_repeated_index_faces = 0;  ///< faces with a repeated vertex index (a subset of the degenerate ones)
   index_t num_duplicate_vertices = 0;
   index_t num_non_finite_vertices = 0;
   index_t num_out_of_range_faces = 0;
@@ -114,9 +115,6 @@ struct mesh_report {
   [[nodiscard]] bool is_closed_genus0_manifold() const noexcept {
     return is_closed_manifold() && orientable && num_components == 1 && genus == 0;
   }
-
-  /// Faces with a repeated vertex index (a subset of the degenerate faces).
-  index_t num_repeated_index_faces = 0;
 
   /// A multi-line human-readable summary (counts, per-component topology, up to max_examples offenders).
   [[nodiscard]] std::string to_string() const;

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "shapestruct/core/concepts/surface_mesh.hpp"
