@@ -11,7 +11,7 @@
 #include <optional>
 #include <vector>
 
-#include "geometry/minimal_off.hpp"
+#include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/generate/primitive_meshes.hpp"
 #include "shapestruct/geometry/average_geodesic_distance.hpp"
 #include "shapestruct/geometry/cotan_laplacian.hpp"
@@ -43,7 +43,7 @@ const std::optional<triangle_mesh<double>>& scape_mesh() {
     if (env == nullptr) return std::nullopt;
     const auto path = std::filesystem::path(env) / "SCAPE" / "Meshes" / "mesh000.off";
     if (!std::filesystem::exists(path)) return std::nullopt;
-    return test::read_off_minimal(path);
+    return read_mesh(path).mesh;
   }();
   return mesh;
 }

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/minimal_off.hpp"
+#include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/geometry/average_geodesic_distance.hpp"
 #include "shapestruct/geometry/dijkstra_geodesics.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
@@ -23,7 +23,7 @@ TEST_CASE("AGD maxima on SCAPE poses: 5 to 10 feature points, intrinsic (the sam
   for (const char* name : names) {
     const auto path = scape / "Meshes" / name;
     if (!std::filesystem::exists(path)) continue;
-    meshes.push_back(test::read_off_minimal(path));
+    meshes.push_back(read_mesh(path).mesh);
     const auto& m = meshes.back();
     const auto agd = average_geodesic_distance(m, {.threads = 0});
     maxima.push_back(agd_local_maxima(m, agd));

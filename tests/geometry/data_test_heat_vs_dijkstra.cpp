@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "geometry/minimal_off.hpp"
+#include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/geometry/dijkstra_geodesics.hpp"
 #include "shapestruct/geometry/heat_geodesics.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
@@ -47,7 +47,7 @@ TEST_CASE("heat method within 10% of Dijkstra in the mean on SCAPE meshes") {
   for (const char* name : {"mesh000.off", "mesh010.off", "mesh025.off", "mesh050.off", "mesh070.off"}) {
     const auto path = scape / "Meshes" / name;
     if (!std::filesystem::exists(path)) continue;
-    const auto m = test::read_off_minimal(path);
+    const auto m = read_mesh(path).mesh;
     const heat_geodesic_solver<double> heat(m.V, m.F);
     REQUIRE(heat.info() == status::ok);
     const dijkstra_geodesics<double> dij(m.V, m.F);
@@ -76,7 +76,7 @@ TEST_CASE("SCAPE mesh through the legacy model: float heat solver agrees with do
   SHAPESTRUCT_REQUIRE_DATA(scape, "SCAPE");
   const auto path = scape / "Meshes" / "mesh000.off";
   REQUIRE(std::filesystem::exists(path));
-  const auto m = test::read_off_minimal(path);
+  const auto m = read_mesh(path).mesh;
   const heat_geodesic_solver<float> heatf(test::to_legacy(m));
   const heat_geodesic_solver<double> heat(m.V, m.F);
   REQUIRE(heatf.info() == status::ok);
