@@ -24,7 +24,7 @@ namespace shapestruct {
 struct template_initializer_options {
   int parts = 4;            ///< N_seg: Voronoi seeds per candidate segmentation
   int candidates = 10;      ///< shapes segmented into candidate templates (chosen with a seeded shuffle)
-  int learn_best = 3;       ///< fully automatic mode: learn from this many best candidates (chapter: 10)
+  int learn_best = 2;       ///< fully automatic mode: learn from this many best candidates (chapter: 10)
   int up_axis = 1;
   double init_sigma = 0.08;  ///< loose Gaussians of an initial template (positions and sizes, canonical units)
   std::uint64_t seed = 1;
