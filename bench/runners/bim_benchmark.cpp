@@ -265,6 +265,19 @@ int main(int argc, char** argv) {
   const auto o_flip = summarize_errors(std::span<const double>(all_flip));
   const auto p_raw = summarize_errors(std::span<const double>(st_raw));
   const auto p_flip = summarize_errors(std::span<const double>(st_flip));
+  // Accuracy curves: fraction of points with error <= D, D in [0, 0.25] (plot with scripts/plot_bim_curves.gnuplot).
+  {
+    std::vector<double> th;
+    for (int k = 0; k <= 50; ++k) th.push_back(0.005 * k);
+    const auto c1 = error_curve(std::span<const double>(all_raw), std::span<const double>(th));
+    const auto c2 = error_curve(std::span<const double>(all_flip), std::span<const double>(th));
+    const auto c3 = error_curve(std::span<const double>(st_raw), std::span<const double>(th));
+    const auto c4 = error_curve(std::span<const double>(st_flip), std::span<const double>(th));
+    std::ofstream cd(fs::path(out_dir) / (set + "_curves.dat"));
+    cd << "# D ours_raw ours_flip stored_raw stored_flip  (" << done << " pairs)\n";
+    for (std::size_t k = 0; k < th.size(); ++k)
+      cd << th[k] << " " << c1[k] << " " << c2[k] << " " << c3[k] << " " << c4[k] << "\n";
+  }
   std::sort(slow.rbegin(), slow.rend());
   std::ofstream md(fs::path(out_dir) / "summary.md", std::ios::app);
   md << "\n### " << set << ": " << done << " pairs (" << failed << " failed) of " << pairs.size() << "\n\n";

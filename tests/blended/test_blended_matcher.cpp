@@ -95,7 +95,9 @@ TEST_CASE("blended_matcher: results do not depend on the thread count") {
 
 TEST_CASE("blended_matcher keeps every candidate blended map with its score and picks the best") {
   const auto m = test::armed_sphere(3);
-  const auto r = blended_matcher<>(small_options()).match(m, m);
+  auto o = small_options();
+  o.full_maps_for_all_groups = true;
+  const auto r = blended_matcher<>(o).match(m, m);
   REQUIRE(r.selected >= 0);
   for (const auto& b : r.blended) {
     CHECK(b.score >= 0);

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <numeric>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,6 +39,10 @@ struct blended_matcher_options {
   double entry_fraction = 0.25;
   index_t min_group_size = 2;  ///< smaller groups are dropped (unless no group is this large)
   index_t max_groups = 8;      ///< blended maps built and scored, largest eigen-weight first
+  /// Blended maps are scored on about this many source faces (every k-th face); only the selected one is then
+  /// evaluated at every vertex, unless full_maps_for_all_groups. 0 = score on all faces.
+  index_t score_faces = 6000;
+  bool full_maps_for_all_groups = false;  ///< also fill blended_candidate::map of the groups not selected
   int threads = 0;             ///< std::threads, 0 = all cores; the result does not depend on it
   /// Progress callback (stage name, seconds spent in it); the library never prints.
   std::function<void(const std::string&, double)> on_stage{};
@@ -49,7 +54,9 @@ struct blended_candidate {
   std::vector<index_t> maps;   ///< indices into blended_match_result::candidates
   Scalar eigen_weight = 0;     ///< sum of |eigenvector entries| of the group's maps
   Scalar score = 0;            ///< integrated area preservation of the blended map, in [0, 1] (higher is better)
-  surface_map<Scalar> map;     ///< the blended map (source vertices -> target surface points)
+  /// The blended map (source vertices -> target surface points); empty for unselected groups unless
+  /// blended_matcher_options::full_maps_for_all_groups (blended_matcher::blend_group rebuilds it).
+  surface_map<Scalar> map;
 };
 
 /// Result of blended_matcher::match. Models MatchResult.
@@ -152,14 +159,20 @@ class blended_matcher {
       blended_candidate<Scalar> bc;
       bc.maps = g.maps;
       bc.eigen_weight = g.weight;
-      blend(a, b, out, bc);
+      blend(a, b, out, bc, !options_.full_maps_for_all_groups);
       out.blended.push_back(std::move(bc));
     }
     index_t best = 0;
     for (index_t g = 1; g < static_cast<index_t>(out.blended.size()); ++g)
       if (out.blended[static_cast<std::size_t>(g)].score > out.blended[static_cast<std::size_t>(best)].score) best = g;
     out.selected = best;
-    out.map = out.blended[static_cast<std::size_t>(best)].map;
+    auto& chosen = out.blended[static_cast<std::size_t>(best)];
+    if (chosen.map.points.empty()) {
+      const Scalar score = chosen.score;
+      blend(a, b, out, chosen, false);
+      chosen.score = score;
+    }
+    out.map = chosen.map;
     stage("blending", t);
     return out;
   }
@@ -226,8 +239,9 @@ class blended_matcher {
 
   /// Ch. 3.3.5: f(p) = projection onto the target of sum_i c_i(p) m_i(p) / sum_i c_i(p) over the group (binary
   /// weights), c_i interpolated from the samples; then the blended map's own area preservation as its score.
+  /// With score_only, the map is evaluated only at the corners of the scored faces and not stored.
   void blend(const blended_shape<double>& a, const blended_shape<double>& b, const blended_match_result<double>& r,
-             blended_candidate<double>& bc) const {
+             blended_candidate<double>& bc, bool score_only) const {
     using Scalar = double;
     const auto& Va = a.mesh().V;
     const auto& Fa = a.mesh().F;
@@ -239,8 +253,22 @@ class blended_matcher {
     const auto& idx = a.interpolation_index();
     const auto& wts = a.interpolation_weight();
     std::vector<surface_point<Scalar>> pts(static_cast<std::size_t>(nv));
-    matrix_x3<Scalar> img(nv, 3);
-    detail::blended_parallel_for(nv, options_.threads, [&](index_t v) {
+    matrix_x3<Scalar> img = matrix_x3<Scalar>::Zero(nv, 3);
+    const index_t face_stride =
+        options_.score_faces > 0 ? std::max<index_t>(1, Fa.rows() / std::max<index_t>(options_.score_faces, 1)) : 1;
+    std::vector<index_t> todo;
+    if (score_only) {
+      std::vector<char> need(static_cast<std::size_t>(nv), 0);
+      for (index_t f = 0; f < Fa.rows(); f += face_stride)
+        for (int k = 0; k < 3; ++k) need[static_cast<std::size_t>(Fa(f, k))] = 1;
+      for (index_t v = 0; v < nv; ++v)
+        if (need[static_cast<std::size_t>(v)]) todo.push_back(v);
+    } else {
+      todo.resize(static_cast<std::size_t>(nv));
+      std::iota(todo.begin(), todo.end(), index_t(0));
+    }
+    detail::blended_parallel_for(static_cast<index_t>(todo.size()), options_.threads, [&](index_t ti) {
+      const index_t v = todo[static_cast<std::size_t>(ti)];
       const auto z = fa.coordinate(v);
       vec3<Scalar> acc = vec3<Scalar>::Zero();
       Scalar wsum = 0, best_c = -1;
@@ -263,17 +291,19 @@ class blended_matcher {
       img.row(v) = hit.point.transpose();
     });
     // Score: area-weighted mean of 2 / (r + 1/r) over the source faces, r = image area / face area (both unit).
-    Scalar score = 0;
-    for (index_t f = 0; f < Fa.rows(); ++f) {
+    Scalar score = 0, scored_area = 0;
+    for (index_t f = 0; f < Fa.rows(); f += face_stride) {
       const vec3<Scalar> a0 = Va.row(Fa(f, 0)), a1 = Va.row(Fa(f, 1)), a2 = Va.row(Fa(f, 2));
       const vec3<Scalar> b0 = img.row(Fa(f, 0)), b1 = img.row(Fa(f, 1)), b2 = img.row(Fa(f, 2));
       const Scalar A = Scalar(0.5) * (a1 - a0).cross(a2 - a0).norm();
       const Scalar B = Scalar(0.5) * (b1 - b0).cross(b2 - b0).norm();
       if (!(A > 0)) continue;
+      scored_area += A;
       const Scalar ratio = B / A;
       score += ratio > 0 ? A * Scalar(2) / (ratio + Scalar(1) / ratio) : Scalar(0);
     }
-    bc.score = score;
+    bc.score = scored_area > 0 ? score / scored_area : Scalar(0);
+    if (score_only) return;
     // Back to the input numbering (repairs may have renumbered or added vertices).
     const index_t n_out = a.original_size();
     bc.map.points.assign(static_cast<std::size_t>(n_out), surface_point<Scalar>{});

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <vector>
 
 #include <Eigen/SparseCore>
@@ -23,6 +24,15 @@ struct geodesic_consistency_options {
   /// Samples where c_i(p) c_j(p) is below this add (at most) this much to S~_ij and are skipped: it saves most
   /// point locations, since a wrong map has low confidence almost everywhere.
   double min_confidence_product = 1e-3;
+  /// Pairs involving a map whose integrated squared confidence sum_p c_i(p)^2 is below this fraction of the best
+  /// map's are not evaluated (the map keeps only its diagonal entry): such a map (a wrong generating triplet)
+  /// distorts area almost everywhere, and its entries in the top eigenvectors are negligible anyway. 0 keeps all.
+  double min_relative_self_confidence = 0.05;
+  /// Only the this-many maps with the largest sum_p c_i(p)^2 are paired (ties by index); the others keep their
+  /// diagonal entry. The filled pairs grow with the square of the bucket sizes, so shapes with many features
+  /// (cats, centaurs: 8-10 AGD maxima, 28,000+ triplet maps pruned to 10,000) would otherwise spend most of the
+  /// time on maps that cannot reach the top eigenvectors. 0 = no limit.
+  index_t max_paired_maps = 2000;
 };
 
 /// The consistency policy of blended_matcher. S~_ij = sum_p c_i(p) c_j(p) S_ij(p) A_p over the even samples,
@@ -66,6 +76,24 @@ struct geodesic_consistency {
         }
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    vector_x<Scalar> self(K);
+    for (index_t i = 0; i < K; ++i) self[i] = confidence.row(i).squaredNorm();
+    const Scalar self_min = K > 0 ? Scalar(options.min_relative_self_confidence) * self.maxCoeff() : Scalar(0);
+    std::vector<char> paired(static_cast<std::size_t>(K), 1);
+    if (options.max_paired_maps > 0 && K > options.max_paired_maps) {
+      std::vector<index_t> order(static_cast<std::size_t>(K));
+      std::iota(order.begin(), order.end(), index_t(0));
+      std::stable_sort(order.begin(), order.end(), [&](index_t x, index_t y) { return self[x] > self[y]; });
+      std::fill(paired.begin(), paired.end(), 0);
+      for (index_t k = 0; k < options.max_paired_maps; ++k) paired[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])] = 1;
+    }
+    pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                               [&](const std::pair<index_t, index_t>& p) {
+                                 return self[p.first] < self_min || self[p.second] < self_min ||
+                                        !paired[static_cast<std::size_t>(p.first)] ||
+                                        !paired[static_cast<std::size_t>(p.second)];
+                               }),
+                pairs.end());
     std::vector<Scalar> values(pairs.size(), 0);
     const auto& fa = a.flattening();
     std::vector<std::complex<Scalar>> zs(static_cast<std::size_t>(S));

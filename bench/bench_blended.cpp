@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// Micro-benchmarks of the blended-intrinsic-maps kernels on a procedural shape (no data needed).
+#include <benchmark/benchmark.h>
+
+#include "blended/blended_fixtures.hpp"
+#include "shapestruct/blended/blended_matcher.hpp"
+#include "shapestruct/conformal/mid_edge_flattening.hpp"
+
+using namespace shapestruct;
+
+static void BM_blended_flattening(benchmark::State& state) {
+  const auto m = test::armed_sphere(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    mid_edge_flattening<double> fl(m.V, m.F);
+    benchmark::DoNotOptimize(fl.vertex_coordinates().data());
+  }
+  state.counters["vertices"] = static_cast<double>(m.V.rows());
+}
+BENCHMARK(BM_blended_flattening)->Arg(4)->Arg(5)->Unit(benchmark::kMillisecond);
+
+static void BM_blended_locate(benchmark::State& state) {
+  const auto m = test::armed_sphere(5);
+  const mid_edge_flattening<double> fl(m.V, m.F);
+  index_t v = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(fl.locate(fl.coordinate(v)).face);
+    v = (v + 7919) % m.V.rows();
+  }
+}
+BENCHMARK(BM_blended_locate);
+
+static void BM_blended_prepare(benchmark::State& state) {
+  const auto m = test::armed_sphere(5);
+  blended_matcher_options o;
+  o.threads = static_cast<int>(state.range(0));
+  const blended_matcher<> matcher(o);
+  for (auto _ : state) benchmark::DoNotOptimize(matcher.prepare(m).features().size());
+}
+BENCHMARK(BM_blended_prepare)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+static void BM_blended_match_prepared(benchmark::State& state) {
+  const auto m = test::armed_sphere(5);
+  std::vector<index_t> perm;
+  const auto moved = test::moved_and_permuted(m, perm);
+  blended_matcher_options o;
+  o.threads = static_cast<int>(state.range(0));
+  const blended_matcher<> matcher(o);
+  const auto a = matcher.prepare(m);
+  const auto b = matcher.prepare(moved);
+  for (auto _ : state) benchmark::DoNotOptimize(matcher.match(a, b).selected);
+}
+BENCHMARK(BM_blended_match_prepared)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();
