@@ -71,7 +71,7 @@ features_and_symmetry load_features(const fs::path& data, const bim_mesh_ref& m)
     out.perm = read_bim_symmetry((data / "TOSCA/Corrs" / (m.cls + ".sym.info")).string(),
                                  static_cast<index_t>(out.vertices.size()));
   } else {
-    out.vertices = read_bim_feature_vertices((data / "watertight_shrec07/Corrs" / (m.id + ".vts")).string());
+    out.vertices = read_bim_feature_vertices((data / "watertight_shrec07/Corrs" / (m.global_id() + ".vts")).string());
     const fs::path sym = data / "watertight_shrec07/Corrs" / (m.cls + ".sym.info");
     if (fs::exists(sym)) out.perm = read_bim_symmetry(sym.string(), static_cast<index_t>(out.vertices.size()));
     else {

@@ -84,6 +84,9 @@ TEST_CASE("BIM benchmark file readers") {
   CHECK(pairs[0].source.name() == "mesh000");
   CHECK(pairs[0].target.relative_path() == "SCAPE/Meshes/mesh037.off");
   CHECK(pairs[1].target.name() == "cat6");
+  const bim_mesh_ref shrec{"SHREC", "3", "7"};
+  CHECK(shrec.name() == "47");
+  CHECK(shrec.relative_path() == "watertight_shrec07/Meshes/47.off");
   const auto v = read_bim_feature_vertices((dir / "a.vts").string());
   CHECK(v == std::vector<index_t>{1836, 2270});
   const auto p = read_bim_symmetry((dir / "a.sym.info").string(), 6);

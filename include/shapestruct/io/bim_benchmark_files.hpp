@@ -17,8 +17,20 @@
 namespace shapestruct {
 
 /// One mesh of the benchmark as named in a .query file: data set ("SCAPE", "TOSCA", "SHREC"), class and id.
+/// For SHREC the id is the 1-based index within the class (20 meshes per class), so the file is
+/// 20 (class - 1) + id.
 struct bim_mesh_ref {
   std::string dataset, cls, id;
+
+  /// SHREC'07 file number (1-400) of a SHREC reference; the id itself for other data sets.
+  [[nodiscard]] std::string global_id() const {
+    if (dataset != "SHREC") return id;
+    try {
+      return std::to_string(20 * (std::stoi(cls) - 1) + std::stoi(id));
+    } catch (const std::exception&) {
+      return id;
+    }
+  }
 
   /// The mesh's name as used in BenchResult file names: mesh%03d (SCAPE), <class><id> (TOSCA), <id> (SHREC).
   [[nodiscard]] std::string name() const {
@@ -28,13 +40,13 @@ struct bim_mesh_ref {
       return "mesh" + s;
     }
     if (dataset == "TOSCA") return cls + id;
-    return id;
+    return global_id();
   }
   /// Path of the mesh relative to the data root.
   [[nodiscard]] std::string relative_path() const {
     if (dataset == "SCAPE") return "SCAPE/Meshes/" + name() + ".off";
     if (dataset == "TOSCA") return "TOSCA/Meshes/" + name() + ".off";
-    return "watertight_shrec07/Meshes/" + id + ".off";
+    return "watertight_shrec07/Meshes/" + global_id() + ".off";
   }
 };
 
