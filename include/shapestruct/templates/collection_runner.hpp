@@ -45,6 +45,7 @@ struct collection_run_options {
   bool write_ply = true;    ///< coloured PLY of each shape and its fitted boxes, for looking at
   bool write_points = true; ///< per-point labels, correspondences and co-alignments
   int threads = 0;          ///< 0 = all cores (over shapes); every result is independent of it
+  std::string summary_name = "summary.json";  ///< distinct names let several processes share one OUT folder
   /// progress(done, total) after each shape of the labeling pass (called under a lock; may be empty).
   std::function<void(std::size_t, std::size_t)> progress;
   /// problem(file, message) for a shape that could not be processed (skipped, not fatal; may be empty).
@@ -340,7 +341,7 @@ inline collection_run_summary run_template_collection(const std::vector<std::fil
                                                      {"members", json_value(std::move(members[t]))}}));
   const json_value summary(json_value::object{{"clusters", json_value(std::move(clusters))},
                                               {"failed", json_value(std::move(bad))}});
-  detail::write_text_atomic(out_dir / "summary.json", to_json_string(summary) + "\n");
+  detail::write_text_atomic(out_dir / opt.summary_name, to_json_string(summary) + "\n");
   return sum;
 }
 
