@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: MIT
+// COSEG chairs with the hand-authored template (docs/templates/chair.json): a few seconds, skipped without data.
+#include <doctest/doctest.h>
+
+#include "shapestruct/eval/labeling_accuracy.hpp"
+#include "shapestruct/geometry/mesh_measures.hpp"
+#include "shapestruct/io/read_mesh.hpp"
+#include "shapestruct/io/segmentation_file.hpp"
+#include "shapestruct/templates/face_labels.hpp"
+#include "shapestruct/templates/make_shape_samples.hpp"
+#include "shapestruct/templates/part_template.hpp"
+#include "shapestruct/templates/template_fitter.hpp"
+#include "support/data_path.hpp"
+
+using namespace shapestruct;
+
+TEST_CASE("COSEG chairs: the hand-authored chair template labels three chairs above 95 %") {
+  SHAPESTRUCT_REQUIRE_DATA(dir, "coseg_subset/res/chairs");
+  const auto t = read_templates(std::string(SHAPESTRUCT_TEST_SOURCE_DIR) + "/../docs/templates/chair.json").at(0);
+  std::vector<labeled_shape> scored;
+  for (const char* id : {"12", "13", "15"}) {
+    const auto m = read_mesh(dir / "shapes" / (std::string(id) + ".off")).mesh;
+    const auto s = make_shape_samples(m);
+    const auto f = fit_template(t, s);
+    labeled_shape ls;
+    ls.predicted = project_labels_to_faces(m, s, f.labels);
+    ls.truth = read_segmentation(dir / "gt" / (std::string(id) + ".seg"), m.F.rows());
+    for (auto& x : ls.truth) x -= 1;
+    const auto A = face_areas<double>(m.V, m.F);
+    ls.weight.assign(A.data(), A.data() + A.size());
+    scored.push_back(std::move(ls));
+  }
+  const auto acc = labeling_accuracy(scored);
+  MESSAGE("accuracy " << acc.accuracy);
+  CHECK(acc.accuracy > 0.95);
+}
