@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <Eigen/Eigenvalues>
 
 #include "shapestruct/core/concepts/point_set.hpp"

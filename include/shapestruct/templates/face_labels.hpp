@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "shapestruct/core/concepts/surface_mesh.hpp"
 #include "shapestruct/core/triangle_mesh.hpp"
