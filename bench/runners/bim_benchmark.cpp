@@ -9,7 +9,11 @@
 // samples of the source (the ground truth is the same vertex id); SHREC'07 at the class's .vts feature points.
 // "With flips" takes, per pair, the better of the truth and the truth composed with the class's intrinsic
 // symmetry (.sym.info; for dense sets the symmetry is made dense from the feature points by geodesic
-// descriptors, see eval/geodesic_error.hpp). Writes <set>_pairs.csv, <set>_errors.tsv (per-sample errors of
+// descriptors, see eval/geodesic_error.hpp). The cross-set lists (humans: SCAPE/TOSCA/SHREC'07 humans; animals:
+// TOSCA/SHREC'07 four-legged animals) have no dense truth: they are scored, as the stored results are (36 resp. 21
+// errors per pair), at the source's feature points, whose true image is the target's feature point of the same
+// name (.info / c<k>.info, matched by name, not by line), and "with flips" uses the target class's .sym.info.
+// Writes <set>_pairs.csv, <set>_errors.tsv (per-sample errors of
 // both methods, for curves), and appends to summary.md.
 #include <algorithm>
 #include <chrono>
@@ -35,12 +39,15 @@ namespace {
 struct set_info {
   std::string query, results;
   bool dense;
+  bool cross = false;  ///< pairs across data sets: features matched by name
 };
 
 const std::map<std::string, set_info> sets = {
     {"scape", {"Corr_Scape.query", "Results_Corr_Scape", true}},
     {"tosca", {"Corr_NRW.query", "Results_Corr_TOSCA", true}},
     {"shrec", {"Corr_SHREC.query", "Results_Corr_SHREC", false}},
+    {"humans", {"Corr_Humans.query", "Results_Corr_Humans", false, true}},
+    {"animals", {"Corr_Animals.query", "Results_Corr_Animals", false, true}},
 };
 
 double median(std::vector<double> v) {
@@ -58,11 +65,18 @@ std::string fmt(double x, int prec = 4) {
 struct features_and_symmetry {
   std::vector<index_t> vertices;
   std::vector<index_t> perm;
+  std::vector<std::string> names;  ///< names[k] of feature point k (cross-set lists only)
 };
 
 /// Feature points of a mesh and the symmetry permutation of its class.
-features_and_symmetry load_features(const fs::path& data, const bim_mesh_ref& m) {
+features_and_symmetry load_features(const fs::path& data, const bim_mesh_ref& m, bool with_names = false) {
   features_and_symmetry out;
+  if (with_names) {
+    const fs::path p = m.dataset == "SCAPE"   ? data / "SCAPE/Corrs/1.info"
+                       : m.dataset == "TOSCA" ? data / "TOSCA/Corrs" / (m.cls + ".info")
+                                              : data / "watertight_shrec07/Corrs" / ("c" + m.cls + ".info");
+    out.names = read_bim_feature_names(p.string());
+  }
   if (m.dataset == "SCAPE") {
     out.vertices = read_bim_feature_vertices((data / "SCAPE/Corrs/1.pid").string());
     out.perm = read_bim_symmetry((data / "SCAPE/Corrs/1.sym.info").string(), static_cast<index_t>(out.vertices.size()));
@@ -105,13 +119,13 @@ int main(int argc, char** argv) {
     else if (a == "--offset") offset = std::stoi(next());
     else if (a == "--threads") threads = std::stoi(next());
     else {
-      std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec --out DIR [--limit N] [--stride K] "
+      std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec|humans|animals --out DIR [--limit N] [--stride K] "
                    "[--offset O] [--threads T]\n";
       return 2;
     }
   }
   if (data_dir.empty() || !sets.count(set)) {
-    std::cerr << "need --data (or $SHAPESTRUCT_DATA) and --set scape|tosca|shrec\n";
+    std::cerr << "need --data (or $SHAPESTRUCT_DATA) and --set scape|tosca|shrec|humans|animals\n";
     return 2;
   }
   const fs::path data(data_dir);
@@ -187,6 +201,22 @@ int main(int argc, char** argv) {
                                                      std::span<const index_t>(fb.perm),
                                                      std::span<const index_t>(truth_internal), threads);
         for (index_t s : sym_internal) truth_sym.push_back(sb.original_vertex(s));
+      } else if (info.cross) {
+        // Across data sets the feature lists are matched by name: source point k -> the target point of the same
+        // name; the symmetric truth is that target point's partner under the target class's symmetry.
+        const auto fa = load_features(data, pr.source, true);
+        const auto fb = load_features(data, pr.target, true);
+        std::map<std::string, std::size_t> by_name;
+        for (std::size_t j = 0; j < fb.names.size() && j < fb.vertices.size(); ++j)
+          if (!fb.names[j].empty()) by_name.emplace(fb.names[j], j);
+        for (std::size_t k = 0; k < fa.names.size() && k < fa.vertices.size(); ++k) {
+          const auto it = fa.names[k].empty() ? by_name.end() : by_name.find(fa.names[k]);
+          if (it == by_name.end()) continue;
+          src_pts.push_back(fa.vertices[k]);
+          truth.push_back(fb.vertices[it->second]);
+          truth_sym.push_back(fb.vertices[static_cast<std::size_t>(fb.perm[it->second])]);
+        }
+        if (src_pts.empty()) throw std::runtime_error("no feature point names in common");
       } else {
         const auto fa = load_features(data, pr.source);
         const auto fb = load_features(data, pr.target);

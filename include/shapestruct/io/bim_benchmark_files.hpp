@@ -3,11 +3,13 @@
 // .sym.info symmetries and the original authors' BenchResult_*.txt per-pair results.
 #pragma once
 
+#include <cctype>
 #include <cstdint>
 #include <fstream>
 #include <map>
 #include <numeric>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -104,6 +106,49 @@ inline std::vector<index_t> read_bim_feature_vertices(const std::string& path) {
     if (!(ss >> v)) throw io_error(file_error::syntax, path, ln, 0, "expected a vertex index at the start of the line");
     if (v < 0) throw io_error(file_error::bad_value, path, ln, 0, "negative vertex index " + std::to_string(v));
     out.push_back(static_cast<index_t>(v));
+  }
+  return out;
+}
+
+/// Reads a feature-name file (.info: SCAPE/TOSCA "<class>.info", SHREC'07 "c<class>.info"), one "k: name" per
+/// line, k the 0-based index of the feature point in the matching .pid/.vts list. Blank lines are skipped (some
+/// TOSCA files have them, so the line number is not the index). Names are trimmed and lower-cased so the same
+/// anatomical point can be matched by name across data sets (the cross-set benchmark lists Corr_Humans/Animals).
+/// \returns names[k] for every index k in the file (an empty string for an index the file does not name).
+/// \throws io_error (cannot_open; syntax naming the line if it has no "k:" prefix; bad_value for a negative or
+/// repeated index).
+/// Complexity: O(file size).
+inline std::vector<std::string> read_bim_feature_names(const std::string& path) {
+  auto in = detail::bim_open(path);
+  std::vector<std::string> out;
+  std::vector<bool> seen;
+  std::string line;
+  std::int64_t ln = 0;
+  while (std::getline(in, line)) {
+    ++ln;
+    const std::string t = detail::bim_trim(line);
+    if (t.empty()) continue;
+    const auto colon = t.find(':');
+    long long k = -1;
+    try {
+      std::size_t used = 0;
+      k = std::stoll(t.substr(0, colon), &used);
+      if (colon == std::string::npos || detail::bim_trim(t.substr(used, colon - used)).size() != 0)
+        throw std::invalid_argument("prefix");
+    } catch (const std::exception&) {
+      throw io_error(file_error::syntax, path, ln, 0, "expected \"<index>: <name>\"");
+    }
+    if (k < 0) throw io_error(file_error::bad_value, path, ln, 0, "negative feature index " + std::to_string(k));
+    const auto ku = static_cast<std::size_t>(k);
+    if (ku >= out.size()) {
+      out.resize(ku + 1);
+      seen.resize(ku + 1, false);
+    }
+    if (seen[ku]) throw io_error(file_error::bad_value, path, ln, 0, "feature index " + std::to_string(k) + " named twice");
+    seen[ku] = true;
+    std::string name = detail::bim_trim(t.substr(colon + 1));
+    for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    out[ku] = std::move(name);
   }
   return out;
 }
