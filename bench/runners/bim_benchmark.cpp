@@ -206,6 +206,22 @@ int main(int argc, char** argv) {
         // name; the symmetric truth is that target point's partner under the target class's symmetry.
         const auto fa = load_features(data, pr.source, true);
         const auto fb = load_features(data, pr.target, true);
+        // SCAPE's single 1.pid holds template vertex ids: it does not apply to the meshes that are not
+        // template-aligned (mesh051, mesh071, mesh073 have other vertex counts), and no feature id may be out of range.
+        const auto check = [&](const bim_mesh_ref& m, const triangle_mesh<double>& M, const features_and_symmetry& f) {
+          if (m.dataset == "SCAPE") {
+            const index_t template_rows = load(bim_mesh_ref{"SCAPE", m.cls, "0"}).V.rows();
+            if (M.V.rows() != template_rows)
+              throw std::runtime_error("no feature points: " + m.name() + " is not aligned with the SCAPE template (" +
+                                       std::to_string(M.V.rows()) + " vs " + std::to_string(template_rows) +
+                                       " vertices)");
+          }
+          for (index_t v : f.vertices)
+            if (v >= M.V.rows())
+              throw std::runtime_error("feature vertex " + std::to_string(v) + " out of range for " + m.name());
+        };
+        check(pr.source, A, fa);
+        check(pr.target, B, fb);
         std::map<std::string, std::size_t> by_name;
         for (std::size_t j = 0; j < fb.names.size() && j < fb.vertices.size(); ++j)
           if (!fb.names[j].empty()) by_name.emplace(fb.names[j], j);
