@@ -21,7 +21,7 @@ if "$cli" --help | grep -q "^  match "; then
   echo "== 3. blended intrinsic map between two creatures =="
   a=$(ls "$out/creatures" | grep -E '\.off$' | sed -n 1p)
   b=$(ls "$out/creatures" | grep -E '\.off$' | sed -n 2p)
-  run "$cli" match "$out/creatures/$a" "$out/creatures/$b" -o "$out/creature_map.map" --color-ply "$out/creature_map"
+  run "$cli" match "$out/creatures/$a" "$out/creatures/$b" -o "$out/creature_map.map" --colors "$out/creature_map"
 fi
 if "$cli" --help | grep -q "^  templates "; then
   echo "== 4. part-based templates learned from the chairs =="
