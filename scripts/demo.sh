@@ -19,8 +19,8 @@ run "$cli" inspect "$out/creatures/$(ls "$out/creatures" | grep -m1 -E '\.(off|o
 
 if "$cli" --help | grep -q "^  match "; then
   echo "== 3. blended intrinsic map between two creatures =="
-  a=$(ls "$out/creatures" | grep -E '\.off$' | sed -n 1p)
-  b=$(ls "$out/creatures" | grep -E '\.off$' | sed -n 2p)
+  a=$(ls "$out/creatures" | grep -E '^creature_.*\.off$' | sed -n 1p)
+  b=$(ls "$out/creatures" | grep -E '^creature_.*\.off$' | sed -n 2p)
   run "$cli" match "$out/creatures/$a" "$out/creatures/$b" -o "$out/creature_map.map" --colors "$out/creature_map"
 fi
 if "$cli" --help | grep -q "^  templates "; then
