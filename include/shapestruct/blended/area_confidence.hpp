@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "shapestruct/blended/blended_shape.hpp"
-#include "shapestruct/blended/detail/parallel_for.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/blended/triplet_candidates.hpp"
 #include "shapestruct/core/types.hpp"
 
@@ -26,7 +26,7 @@ struct area_confidence {
     matrix_x<Scalar> C(K, S);
     const auto& fa = a.flattening();
     const auto& fb = b.flattening();
-    detail::blended_parallel_for(K, threads, [&](index_t i) {
+    detail::parallel_for(K, detail::resolve_threads(threads, "blended intrinsic maps"), [&](index_t i) {
       const auto& T = maps[static_cast<std::size_t>(i)].transform;
       for (index_t s = 0; s < S; ++s) {
         const index_t v = samples[static_cast<std::size_t>(s)];

@@ -17,7 +17,7 @@
 
 #include "shapestruct/blended/area_confidence.hpp"
 #include "shapestruct/blended/blended_shape.hpp"
-#include "shapestruct/blended/detail/parallel_for.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/blended/geodesic_consistency.hpp"
 #include "shapestruct/blended/triplet_candidates.hpp"
 #include "shapestruct/core/concepts/surface_mesh.hpp"
@@ -270,7 +270,7 @@ class blended_matcher {
       todo.resize(static_cast<std::size_t>(nv));
       std::iota(todo.begin(), todo.end(), index_t(0));
     }
-    detail::blended_parallel_for(static_cast<index_t>(todo.size()), options_.threads, [&](index_t ti) {
+    detail::parallel_for(static_cast<index_t>(todo.size()), detail::resolve_threads(options_.threads, "blended intrinsic maps"), [&](index_t ti) {
       const index_t v = todo[static_cast<std::size_t>(ti)];
       const auto z = fa.coordinate(v);
       vec3<Scalar> acc = vec3<Scalar>::Zero();

@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "shapestruct/blended/detail/parallel_for.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/conformal/mid_edge_flattening.hpp"
 #include "shapestruct/core/concepts/surface_mesh.hpp"
 #include "shapestruct/core/errors.hpp"
@@ -118,7 +118,7 @@ class blended_shape {
     const index_t K = std::min(options.interpolation_samples, S);
     interp_index_.resize(nv, K);
     interp_weight_.resize(nv, K);
-    detail::blended_parallel_for(nv, options.threads, [&](index_t v) {
+    detail::parallel_for(nv, detail::resolve_threads(options.threads, "blended intrinsic maps"), [&](index_t v) {
       std::vector<index_t> order(static_cast<std::size_t>(S));
       std::iota(order.begin(), order.end(), index_t(0));
       std::partial_sort(order.begin(), order.begin() + K, order.end(),

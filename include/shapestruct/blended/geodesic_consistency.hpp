@@ -12,7 +12,7 @@
 #include <Eigen/SparseCore>
 
 #include "shapestruct/blended/blended_shape.hpp"
-#include "shapestruct/blended/detail/parallel_for.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/blended/triplet_candidates.hpp"
 #include "shapestruct/core/types.hpp"
 
@@ -98,7 +98,7 @@ struct geodesic_consistency {
     const auto& fa = a.flattening();
     std::vector<std::complex<Scalar>> zs(static_cast<std::size_t>(S));
     for (index_t s = 0; s < S; ++s) zs[static_cast<std::size_t>(s)] = fa.coordinate(samples[static_cast<std::size_t>(s)]);
-    detail::blended_parallel_for(static_cast<index_t>(pairs.size()), threads, [&](index_t pi) {
+    detail::parallel_for(static_cast<index_t>(pairs.size()), detail::resolve_threads(threads, "blended intrinsic maps"), [&](index_t pi) {
       const auto [i, j] = pairs[static_cast<std::size_t>(pi)];
       // m_j^-1 o m_i is one Möbius transform of the source plane.
       const auto R = maps[static_cast<std::size_t>(j)].transform.inverse().compose(maps[static_cast<std::size_t>(i)].transform);

@@ -5,17 +5,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <exception>
 #include <numbers>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include "shapestruct/core/errors.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/generate/assembly.hpp"
 #include "shapestruct/generate/primitive_meshes.hpp"
 #include "shapestruct/generate/shape_rng.hpp"
@@ -352,21 +351,8 @@ class assembly_generator {
   /// identical for every thread count.
   [[nodiscard]] std::vector<assembly<Scalar>> generate_range(std::uint64_t first, std::size_t count, unsigned threads = 0) const {
     std::vector<assembly<Scalar>> out(count);
-    unsigned nt = threads ? threads : o_.threads ? o_.threads : std::max(1u, std::thread::hardware_concurrency());
-    nt = static_cast<unsigned>(std::min<std::size_t>(nt, std::max<std::size_t>(count, 1)));
-    std::vector<std::thread> pool;
-    std::vector<std::exception_ptr> errors(nt);
-    for (unsigned w = 0; w < nt; ++w)
-      pool.emplace_back([&, w] {
-        try {
-          for (std::size_t i = w; i < count; i += nt) out[i] = generate(first + i);
-        } catch (...) {
-          errors[w] = std::current_exception();
-        }
-      });
-    for (auto& th : pool) th.join();
-    for (auto& e : errors)
-      if (e) std::rethrow_exception(e);
+    const unsigned nt = threads ? threads : o_.threads ? o_.threads : detail::resolve_threads(0);
+    detail::parallel_for(count, nt, [&](std::size_t i) { out[i] = generate(first + i); });
     return out;
   }
 

@@ -6,10 +6,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <exception>
 #include <map>
 #include <string>
-#include <thread>
 #include <unordered_map>
 #include <vector>
 
@@ -19,6 +17,7 @@
 #include "shapestruct/config.hpp"
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/core/triangle_mesh.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/generate/catmull_clark_patches.hpp"
 #include "shapestruct/generate/creature.hpp"
 #include "shapestruct/generate/creature_locator.hpp"
@@ -129,7 +128,8 @@ inline cage_template make_template() {
     t.slot[b] = s;
   }
   for (int s = 0; s < creature_slot_count; ++s) {
-    const auto& bq = t.quads[static_cast<std::size_t>(t.base[static_cast<std::size_t>(s)])];
+    // A copy, not a reference: the push_backs below reallocate t.quads.
+    const std::array<index_t, 4> bq = t.quads[static_cast<std::size_t>(t.base[static_cast<std::size_t>(s)])];
     for (int r = 1; r <= rings; ++r)
       for (int e = 0; e < 4; ++e) {
         const auto lo = [&](int k) { return r == 1 ? bq[static_cast<std::size_t>(k)] : t.ring_vertex(s, r - 1, k); };
@@ -404,21 +404,8 @@ class creature_generator {
   [[nodiscard]] std::vector<creature<Scalar>> generate_range(std::uint64_t first, std::size_t count,
                                                              unsigned threads = 0) const {
     std::vector<creature<Scalar>> out(count);
-    unsigned nt = threads ? threads : o_.threads ? o_.threads : std::max(1u, std::thread::hardware_concurrency());
-    nt = static_cast<unsigned>(std::min<std::size_t>(nt, std::max<std::size_t>(count, 1)));
-    std::vector<std::thread> pool;
-    std::vector<std::exception_ptr> errors(nt);
-    for (unsigned w = 0; w < nt; ++w)
-      pool.emplace_back([&, w] {
-        try {
-          for (std::size_t i = w; i < count; i += nt) out[i] = generate(first + i);
-        } catch (...) {
-          errors[w] = std::current_exception();
-        }
-      });
-    for (auto& th : pool) th.join();
-    for (auto& e : errors)
-      if (e) std::rethrow_exception(e);
+    const unsigned nt = threads ? threads : o_.threads ? o_.threads : detail::resolve_threads(0);
+    detail::parallel_for(count, nt, [&](std::size_t i) { out[i] = generate(first + i); });
     return out;
   }
 

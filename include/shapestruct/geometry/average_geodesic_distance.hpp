@@ -59,7 +59,7 @@ template <class Scalar>
                         "average_geodesic_distance: options.num_sources must be >= 1, got " +
                             std::to_string(options.num_sources));
   detail::geometry_check_vertex(options.first, V.rows(), "average_geodesic_distance", "options.first");
-  const unsigned workers = detail::geometry_resolve_threads(options.threads, "average_geodesic_distance");
+  const unsigned workers = detail::resolve_threads(options.threads, "average_geodesic_distance");
   const index_t n = V.rows();
   const dijkstra_geodesics<Scalar> geo(V, F, validation_level::trust);
   std::vector<index_t> sources;

@@ -21,7 +21,7 @@
 #include "shapestruct/core/triangle_mesh.hpp"
 #include "shapestruct/core/types.hpp"
 #include "shapestruct/core/validate.hpp"
-#include "shapestruct/knn/detail/knn_parallel.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/knn/detail/morton_order.hpp"
 
 namespace shapestruct {
@@ -211,7 +211,7 @@ class closest_point_query {
   /// \throws invalid_input non_finite (index of the offending query row), bad_parameter (threads < 0)
   [[nodiscard]] closest_point_batch<Scalar> query_batch(const Eigen::Ref<const matrix_x3<Scalar>>& Q,
                                                         int threads = 0) const {
-    const unsigned workers = detail::knn_resolve_threads(threads, "closest_point_query::query_batch");
+    const unsigned workers = detail::resolve_threads(threads, "closest_point_query::query_batch");
     if (!Q.allFinite())
       for (index_t i = 0; i < Q.rows(); ++i)
         if (!Q.row(i).allFinite())
@@ -229,7 +229,7 @@ class closest_point_query {
     if (Q.rows() >= 1024)
       order = detail::morton_order<3>(static_cast<std::size_t>(Q.rows()),
                                       [&](std::size_t i, int d) { return Q(static_cast<index_t>(i), d); });
-    detail::knn_parallel_for(Q.rows(), workers, [&](index_t j) {
+    detail::parallel_for(Q.rows(), workers, [&](index_t j) {
       const index_t i = order.empty() ? j : static_cast<index_t>(order[static_cast<std::size_t>(j)]);
       const auto r = query_unchecked(Q.row(i).transpose());
       out.faces[i] = r.location.face;

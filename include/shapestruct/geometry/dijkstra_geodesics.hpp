@@ -112,10 +112,10 @@ class dijkstra_geodesics {
   /// \throws invalid_input (empty, bad_parameter). Complexity O(S E log V) work, parallel over sources.
   [[nodiscard]] matrix_x<Scalar> distance_table(std::span<const index_t> sources, int threads = 0) const {
     check_sources(sources, "dijkstra_geodesics::distance_table");
-    const unsigned workers = detail::geometry_resolve_threads(threads, "dijkstra_geodesics::distance_table");
+    const unsigned workers = detail::resolve_threads(threads, "dijkstra_geodesics::distance_table");
     matrix_x<Scalar> D(num_vertices(), static_cast<index_t>(sources.size()));
     std::vector<workspace> ws(workers);
-    detail::geometry_parallel_for(static_cast<index_t>(sources.size()), workers, [&](unsigned w, index_t k) {
+    detail::parallel_for(static_cast<index_t>(sources.size()), workers, [&](unsigned w, index_t k) {
       const index_t s[1] = {sources[static_cast<std::size_t>(k)]};
       run_multi(ws[w], std::span<const index_t>(s, 1), D.col(k).data());
     });

@@ -179,12 +179,12 @@ class heat_geodesic_solver {
   /// \throws invalid_input (empty, bad_parameter).
   [[nodiscard]] heat_distance_table<Scalar> distance_table(std::span<const index_t> sources, int threads = 0) const {
     check_sources(sources, "heat_geodesic_solver::distance_table");
-    const unsigned workers = detail::geometry_resolve_threads(threads, "heat_geodesic_solver::distance_table");
+    const unsigned workers = detail::resolve_threads(threads, "heat_geodesic_solver::distance_table");
     heat_distance_table<Scalar> out;
     out.distances.resize(n_, static_cast<index_t>(sources.size()));
     out.info = info_;
     std::vector<scratch> ws(workers);
-    detail::geometry_parallel_for(static_cast<index_t>(sources.size()), workers, [&](unsigned w, index_t k) {
+    detail::parallel_for(static_cast<index_t>(sources.size()), workers, [&](unsigned w, index_t k) {
       const index_t s[1] = {sources[static_cast<std::size_t>(k)]};
       solve_into(std::span<const index_t>(s, 1), ws[w], out.distances.col(k).data());
     });

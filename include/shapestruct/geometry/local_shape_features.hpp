@@ -22,7 +22,7 @@
 #include "shapestruct/core/types.hpp"
 #include "shapestruct/core/validate.hpp"
 #include "shapestruct/geometry/detail/eigen_forward.hpp"
-#include "shapestruct/knn/detail/knn_parallel.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/knn/detail/morton_order.hpp"
 #include "shapestruct/knn/knn_index.hpp"
 
@@ -156,7 +156,7 @@ template <class Scalar>
                                                                        const local_shape_features_options& options = {}) {
   const char* who = "local_shape_features";
   validate_points(P, who, options.validation);
-  const unsigned workers = detail::knn_resolve_threads(options.threads, who);
+  const unsigned workers = detail::resolve_threads(options.threads, who);
   auto bad = [&](const std::string& what) { throw invalid_input(input_error::bad_parameter, no_index, std::string(who) + ": " + what); };
   if (options.k < 0) bad("k must be >= 0, got " + std::to_string(options.k));
   if (!(options.radius >= 0) || !std::isfinite(options.radius)) bad("radius must be finite and >= 0");
@@ -195,7 +195,7 @@ template <class Scalar>
   // writes only its own rows, so the order does not change the result.
   const std::vector<std::uint32_t> order = detail::morton_order<3>(
       static_cast<std::size_t>(n), [&](std::size_t i, int d) { return P(static_cast<index_t>(i), d); });
-  detail::knn_parallel_for(n, workers, [&](index_t j) {
+  detail::parallel_for(n, workers, [&](index_t j) {
     const index_t i = static_cast<index_t>(order[static_cast<std::size_t>(j)]);
     std::vector<std::pair<std::uint32_t, Scalar>> hits;
     double scale2 = double(out.radius) * double(out.radius);

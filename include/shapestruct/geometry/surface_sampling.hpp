@@ -22,7 +22,7 @@
 #include "shapestruct/core/types.hpp"
 #include "shapestruct/core/validate.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
-#include "shapestruct/knn/detail/knn_parallel.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/knn/knn_index.hpp"
 
 namespace shapestruct {
@@ -179,7 +179,7 @@ template <class Scalar>
                                                           const surface_sampling_options& options = {}) {
   const char* who = "sample_surface_even";
   detail::check_sampling_arguments<Scalar>(count, options, who);
-  const unsigned workers = detail::knn_resolve_threads(options.threads, who);
+  const unsigned workers = detail::resolve_threads(options.threads, who);
   validate_mesh(V, F, who, options.validation);
   const index_t n = std::max<index_t>(count, static_cast<index_t>(std::ceil(options.oversampling * double(count))));
   surface_samples<Scalar> cand = detail::random_samples_unchecked<Scalar>(V, F, n, options.seed, who);
@@ -203,7 +203,7 @@ template <class Scalar>
   // Neighbour lists (CSR), built in parallel: each list depends only on the candidate set.
   const knn_index<Scalar, 3> index(cand.points);
   std::vector<std::vector<std::pair<index_t, double>>> nbrs(static_cast<std::size_t>(n));
-  detail::knn_parallel_for(n, workers, [&](index_t i) {
+  detail::parallel_for(n, workers, [&](index_t i) {
     std::vector<std::pair<std::uint32_t, Scalar>> hits;
     index.radius_into(cand.points.row(i), static_cast<Scalar>(reach), hits);
     auto& list = nbrs[static_cast<std::size_t>(i)];

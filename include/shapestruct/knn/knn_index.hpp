@@ -23,7 +23,7 @@
 #include "shapestruct/core/concepts/point_set.hpp"
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/core/types.hpp"
-#include "shapestruct/knn/detail/knn_parallel.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/knn/detail/morton_order.hpp"
 
 namespace shapestruct {
@@ -231,7 +231,7 @@ class knn_index {
   [[nodiscard]] knn_batch_result<Scalar> knn_batch(const Eigen::Ref<const points_matrix>& Q, index_t k,
                                                    int threads = 0) const {
     check_k(k, "knn_index::knn_batch");
-    const unsigned workers = detail::knn_resolve_threads(threads, "knn_index::knn_batch");
+    const unsigned workers = detail::resolve_threads(threads, "knn_index::knn_batch");
     if (!Q.allFinite())
       for (index_t i = 0; i < Q.rows(); ++i)
         if (!Q.row(i).allFinite())
@@ -248,7 +248,7 @@ class knn_index {
     if (Q.rows() >= 1024)
       order = detail::morton_order<Dim>(static_cast<std::size_t>(Q.rows()),
                            [&](std::size_t i, int d) { return Q(static_cast<index_t>(i), d); });
-    detail::knn_parallel_for(Q.rows(), workers, [&](index_t j) {
+    detail::parallel_for(Q.rows(), workers, [&](index_t j) {
       const index_t i = order.empty() ? j : static_cast<index_t>(order[static_cast<std::size_t>(j)]);
       const point_type p = Q.row(i).transpose();
       with_buffers(kk, [&](std::uint32_t* ids, Scalar* d) {

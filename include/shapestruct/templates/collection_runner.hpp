@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 
+#include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/io/json.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/io/segmentation_file.hpp"
@@ -185,7 +186,7 @@ inline collection_run_summary run_template_collection(const std::vector<std::fil
   namespace fs = std::filesystem;
   fs::create_directories(out_dir);
   if (opt.write_ply) fs::create_directories(out_dir / "ply");
-  const unsigned threads = detail::resolve_threads(opt.threads);
+  const unsigned threads = detail::resolve_threads(opt.threads, "run_template_collection");
   collection_run_summary sum;
   std::mutex lock;
   auto report = [&](const std::string& file, const std::string& msg) {

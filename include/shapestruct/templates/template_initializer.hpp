@@ -13,6 +13,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "shapestruct/core/errors.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/templates/part_template.hpp"
 #include "shapestruct/templates/shape_samples.hpp"
 #include "shapestruct/templates/template_fitter.hpp"
@@ -130,7 +131,7 @@ inline std::vector<part_template> auto_templates(const std::vector<shape_samples
   std::shuffle(order.begin(), order.end(), rng);
   order.resize(std::min<std::size_t>(order.size(), static_cast<std::size_t>(std::max(1, opt.candidates))));
   std::vector<std::pair<double, part_template>> cands(order.size());
-  detail::parallel_for(order.size(), detail::resolve_threads(learn.threads), [&](std::size_t k) {
+  detail::parallel_for(order.size(), detail::resolve_threads(learn.threads, "auto_templates"), [&](std::size_t k) {
     auto [t, e] = template_from_shape(shapes[order[k]], opt, learn.fit);
     t.id = "auto from shape " + std::to_string(order[k]);
     cands[k] = {e, std::move(t)};

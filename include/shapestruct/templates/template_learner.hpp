@@ -5,21 +5,18 @@
 #pragma once
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <mutex>
-#include <exception>
 #include <numeric>
 #include <random>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "shapestruct/core/errors.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/templates/part_template.hpp"
 #include "shapestruct/templates/shape_samples.hpp"
 #include "shapestruct/templates/template_fitter.hpp"
@@ -62,44 +59,6 @@ struct template_learning_result {
 };
 
 namespace detail {
-
-inline unsigned resolve_threads(int threads) {
-  if (threads < 0)
-    throw invalid_input(input_error::bad_parameter, no_index, "template learner: threads must be >= 0");
-  return threads > 0 ? unsigned(threads) : std::max(1u, std::thread::hardware_concurrency());
-}
-
-/// Runs f(i) for i in [0, n) on `threads` workers (dynamic scheduling; f writes only to slot i, so results do
-/// not depend on the thread count). The first exception is rethrown after all workers stop.
-template <class F>
-void parallel_for(std::size_t n, unsigned threads, F&& f) {
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr error;
-  std::atomic<bool> failed{false};
-  std::mutex m;
-  auto work = [&] {
-    for (;;) {
-      const std::size_t i = next.fetch_add(1);
-      if (i >= n || failed.load()) return;
-      try {
-        f(i);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(m);
-        if (!error) error = std::current_exception();
-        failed = true;
-      }
-    }
-  };
-  const unsigned w = std::min<unsigned>(threads, static_cast<unsigned>(std::max<std::size_t>(n, 1)));
-  if (w <= 1) {
-    work();
-  } else {
-    std::vector<std::thread> pool;
-    for (unsigned k = 0; k < w; ++k) pool.emplace_back(work);
-    for (auto& t : pool) t.join();
-  }
-  if (error) std::rethrow_exception(error);
-}
 
 /// Per-template running sums of the learned deformations (every learning-set shape contributes once).
 struct gaussian_sums {
@@ -204,7 +163,7 @@ inline std::vector<template_assignment> fit_template_set(const std::vector<part_
   if (templates.empty())
     throw invalid_input(input_error::empty, no_index, "fit_template_set: no templates");
   std::vector<template_assignment> out(shapes.size());
-  detail::parallel_for(shapes.size(), detail::resolve_threads(opt.threads), [&](std::size_t i) {
+  detail::parallel_for(shapes.size(), detail::resolve_threads(opt.threads, "learn_templates"), [&](std::size_t i) {
     for (std::size_t t = 0; t < templates.size(); ++t) {
       auto f = fit_template(templates[t], shapes[i], opt.fit);
       if (out[i].template_index == no_index || f.energy < out[i].fit.energy) {
@@ -235,7 +194,7 @@ inline template_learning_result learn_templates(std::vector<part_template> templ
     throw invalid_input(input_error::bad_parameter, no_index,
                         "learn_templates: K_L >= 1, N_iter >= 0, tau > 0, cluster_distance > 0, prior_weight >= 0");
   for (const auto& t : templates) validate_template(t, "learn_templates");
-  const unsigned threads = detail::resolve_threads(opt.threads);
+  const unsigned threads = detail::resolve_threads(opt.threads, "learn_templates");
   const std::size_t N = shapes.size();
   std::vector<double> energy(N, std::numeric_limits<double>::infinity());
   std::vector<index_t> best_t(N, no_index);

@@ -1,15 +1,10 @@
 // SPDX-License-Identifier: MIT
-// Private helpers shared by the geometry kernels: thread-count resolution, a deterministic parallel loop,
-// and clamped cotangents. No stability promise.
+// Private helpers shared by the geometry kernels: clamped cotangents and dense-type helpers. No stability promise.
 #pragma once
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <Eigen/Core>
@@ -17,51 +12,9 @@
 
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/core/types.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
 
 namespace shapestruct::detail {
-
-/// Resolves a `threads` option: 0 means all hardware threads; negative values are rejected.
-/// \throws invalid_input (bad_parameter) if threads < 0.
-inline unsigned geometry_resolve_threads(int threads, const char* who) {
-  if (threads < 0)
-    throw invalid_input(input_error::bad_parameter, no_index,
-                        std::string(who) + ": threads must be >= 0 (0 = all cores), got " + std::to_string(threads));
-  if (threads == 0) return std::max(1u, std::thread::hardware_concurrency());
-  return static_cast<unsigned>(threads);
-}
-
-/// Runs body(worker, i) for i in [0, n) on up to `workers` std::threads, handing out items one at a time
-/// through an atomic counter (items may differ a lot in cost). Each item must write only its own output, so
-/// the result does not depend on the number of workers or the schedule. The first exception thrown by a
-/// body is rethrown on the calling thread after all workers stop.
-template <class Body>
-void geometry_parallel_for(index_t n, unsigned workers, Body&& body) {
-  if (n <= 0) return;
-  workers = static_cast<unsigned>(std::min<index_t>(static_cast<index_t>(std::max(1u, workers)), n));
-  if (workers == 1) {
-    for (index_t i = 0; i < n; ++i) body(0u, i);
-    return;
-  }
-  std::atomic<index_t> next{0};
-  std::atomic<bool> failed{false};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto run = [&](unsigned w) {
-    try {
-      for (index_t i = next.fetch_add(1); i < n && !failed.load(); i = next.fetch_add(1)) body(w, i);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(error_mutex);
-      if (!error) error = std::current_exception();
-      failed.store(true);
-    }
-  };
-  std::vector<std::thread> pool;
-  pool.reserve(workers - 1);
-  for (unsigned w = 1; w < workers; ++w) pool.emplace_back(run, w);
-  run(0);
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
-}
 
 /// Largest |cot| the cotangent kernels produce. A triangle angle of 1e-5 rad (5.7e-4 degrees) already has
 /// cot = 1e5; scanned meshes (SCAPE) contain slivers and zero-area faces whose exact cotangents are huge or
