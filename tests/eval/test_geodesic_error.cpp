@@ -102,3 +102,31 @@ TEST_CASE("BIM benchmark file readers") {
   CHECK_THROWS_AS((void)read_bim_query((dir / "missing.query").string()), io_error);
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("read_bim_feature_names: names by index, trimmed and lower-cased, blank lines skipped") {
+  const auto dir = std::filesystem::temp_directory_path() / "shapestruct_bim_names_test";
+  std::filesystem::create_directories(dir);
+  {
+    // TOSCA's .info files have blank lines and mixed case; the index before the colon, not the line, counts.
+    std::ofstream(dir / "a.info") << "0: Nose\n\n2:  Left Hand \r\n1:right hand\n";
+    std::ofstream(dir / "no_colon.info") << "0: nose\n1 left hand\n";
+    std::ofstream(dir / "negative.info") << "-1: nose\n";
+    std::ofstream(dir / "twice.info") << "0: nose\n0: chin\n";
+  }
+  const auto names = read_bim_feature_names((dir / "a.info").string());
+  CHECK(names == std::vector<std::string>{"nose", "right hand", "left hand"});
+  // Errors name the file and the line.
+  const auto line_of = [&](const char* file) {
+    try {
+      (void)read_bim_feature_names((dir / file).string());
+    } catch (const io_error& e) {
+      return e.line();
+    }
+    return std::int64_t{-1};
+  };
+  CHECK(line_of("no_colon.info") == 2);
+  CHECK(line_of("negative.info") == 1);
+  CHECK(line_of("twice.info") == 2);
+  CHECK_THROWS_AS((void)read_bim_feature_names((dir / "missing.info").string()), io_error);
+  std::filesystem::remove_all(dir);
+}
