@@ -31,7 +31,7 @@ struct template_learner_options {
   int threads = 0;             ///< 0 = all cores; results do not depend on it
   index_t K_L = 50;            ///< fitting-set size: K_L best + K_L random shapes per iteration
   double e_min = 0.6;          ///< almost-certainly-good fit (learning set, and template re-estimation)
-  double e_max = 1.2;          ///< ceiling of the per-template threshold tau * best energy
+  double e_max = 1.2;          ///< learning-set threshold: energy below max(tau * best energy, e_max)
   double tau = 4;              ///< learning-set threshold factor over a template's best fit
   int N_iter = 10;             ///< maximal learning iterations
   double spawn_fraction = 0.05;  ///< clusters with more than this fraction of the learning set spawn templates
@@ -177,7 +177,7 @@ inline std::vector<template_assignment> fit_template_set(const std::vector<part_
 
 /// Template refinement (5.3.3). Iteration 1 fits all shapes; later iterations re-fit a Fitting Set of the K_L
 /// shapes with the lowest recent energy plus K_L random ones. Shapes of the fitting set not yet learned from,
-/// with energy below e_min or below min(tau x their template's best energy, e_max), form the Learning Set.
+/// with energy below e_min or below max(tau x their template's best energy, e_max), form the Learning Set.
 /// Learning-set shapes with energy <= e_min re-estimate their template's Gaussians (centres, sizes, features);
 /// the others are clustered per template by complete linkage on their deformations (RMS z-score distance below
 /// cluster_distance); clusters larger than spawn_fraction of the learning set (and at least 2 shapes) spawn a
@@ -245,8 +245,10 @@ inline template_learning_result learn_templates(std::vector<part_template> templ
       const std::size_t i = fitting[k];
       const double e = energy[i];
       if (learned[i] || !std::isfinite(e)) continue;
+      // 5.3.3: "less than e_min ... or less than max(e_t, e_max)". (An earlier version used min(e_t, e_max):
+      // with tau x best below e_min that window is empty, so no shape could ever be a spawning candidate.)
       const double et = opt.tau * best_of[static_cast<std::size_t>(best_t[i])];
-      if (e < opt.e_min || e < std::min(et, opt.e_max)) learning.push_back(k);
+      if (e < opt.e_min || e < std::max(et, opt.e_max)) learning.push_back(k);
     }
     if (learning.empty()) break;
     res.iterations = iter + 1;
