@@ -120,6 +120,40 @@ TEST_CASE("learn_templates moves the template towards the collection; initialize
   CHECK_THROWS_AS(template_from_shape(shapes[0], {.parts = 0}), invalid_input);
 }
 
+TEST_CASE("learning set: energy below max(tau x best, e_max) enters it; shapes not re-estimating spawn (5.3.3)") {
+  // Half triangle_mesh, half legacy_mesh: the learner sees only samples, both models must behave alike.
+  const assembly_generator<double> gen(assembly_kind::chair, 11);
+  std::vector<shape_samples> shapes;
+  for (int i = 0; i < 8; ++i) {
+    const auto m = gen.generate(static_cast<std::uint64_t>(i)).mesh;
+    shapes.push_back(i % 2 == 0 ? make_shape_samples(m, {.points = 400})
+                                : make_shape_samples(test::to_legacy(m), {.points = 400}));
+  }
+  template_learner_options lo;
+  lo.N_iter = 1;
+  lo.e_min = 0;             // no fit is "almost certainly good": nothing re-estimates the template ...
+  lo.tau = 1e-9;            // ... tau x best is below every energy ...
+  lo.e_max = 1e9;           // ... but every energy is below e_max, so all 8 form the Learning Set
+  lo.cluster_distance = 1e9;  // one cluster of 8 > 5% of the Learning Set: it spawns a template
+  const auto r = learn_templates({synthetic_chair_template()}, shapes, lo);
+  CHECK(r.learned_shapes == 8);
+  REQUIRE(r.templates.size() == 2);
+  CHECK(r.outliers == 0);
+  // The spawned template keeps the parent's parts and output labels (so one label mapping serves both) and is
+  // estimated from the cluster: its seat moved from the hand-made guess.
+  const auto& parent = r.templates[0];
+  const auto& child = r.templates[1];
+  REQUIRE(child.num_parts() == parent.num_parts());
+  for (index_t b = 0; b < parent.num_parts(); ++b)
+    CHECK(child.parts[static_cast<std::size_t>(b)].label == parent.parts[static_cast<std::size_t>(b)].label);
+  CHECK((child.parts[0].center - parent.parts[0].center).norm() > 1e-4);
+  // With no window (e_max below every energy too) nothing is learned and nothing spawns.
+  lo.e_max = 0;
+  const auto none = learn_templates({synthetic_chair_template()}, shapes, lo);
+  CHECK(none.learned_shapes == 0);
+  CHECK(none.templates.size() == 1);
+}
+
 TEST_CASE("run_template_collection writes per-shape results, skips a bad file, resumes identically") {
   const fs::path dir = fs::temp_directory_path() / "shapestruct_tpl_pipeline";
   fs::remove_all(dir);
