@@ -120,7 +120,7 @@ TEST_CASE("learn_templates moves the template towards the collection; initialize
   CHECK_THROWS_AS(template_from_shape(shapes[0], {.parts = 0}), invalid_input);
 }
 
-TEST_CASE("learning set: energy below max(tau x best, e_max) enters it; shapes not re-estimating spawn (5.3.3)") {
+TEST_CASE("learning set admits energies below max(tau x best or e_max) and its non-re-estimating shapes spawn (5.3.3)") {
   // Half triangle_mesh, half legacy_mesh: the learner sees only samples, both models must behave alike.
   const assembly_generator<double> gen(assembly_kind::chair, 11);
   std::vector<shape_samples> shapes;
