@@ -2,6 +2,7 @@
 // Learner, initializer, collection runner (resume, bad shapes), co-alignment, on two mesh models.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -73,6 +74,44 @@ TEST_CASE("make_shape_samples and fit_template agree on triangle_mesh and legacy
   index_t self = 0;
   for (std::size_t i = 0; i < corr.size(); ++i) self += corr[i] == static_cast<index_t>(i) ? 1 : 0;
   CHECK(self == 600);  // a shape maps onto itself through the canonical space
+}
+
+TEST_CASE("canonical_correspondence across two templates goes through parts with the same output label") {
+  const assembly_generator<double> gen(assembly_kind::chair, 5);
+  const auto m = gen.generate(0).mesh;
+  const auto s1 = make_shape_samples(m, {.points = 500});
+  const auto s2 = make_shape_samples(test::to_legacy(m), {.points = 500});
+  const auto t = synthetic_chair_template();
+  // t2: the same boxes in another order, and the back relabelled so it has no counterpart in t.
+  part_template t2 = t;
+  std::reverse(t2.parts.begin(), t2.parts.end());
+  t2.parts.back().label = 1;  // was the seat (label 0) -> now shares the back's label 1
+  t2.parts[t2.parts.size() - 2].label = 7;  // the back: a label t does not have
+  const auto pm = template_part_map(t, t2);
+  REQUIRE(pm.size() == 6);
+  CHECK(pm[0] == -1);  // t's seat (label 0): t2 has no part labelled 0
+  CHECK(pm[1] == 5);   // t's back (label 1) -> t2's only label-1 part
+  for (index_t b = 2; b < 6; ++b) CHECK(pm[static_cast<std::size_t>(b)] == 5 - b);  // legs: nearest same-label box
+  const auto same = template_part_map(t, t);
+  for (index_t b = 0; b < 6; ++b) CHECK(same[static_cast<std::size_t>(b)] == b);
+  // A shape fitted with t (triangle_mesh) and the same shape fitted with t reordered (legacy_mesh): leg points
+  // map onto the same (or an adjacent) sample position.
+  part_template t3 = t;
+  std::reverse(t3.parts.begin(), t3.parts.end());
+  const auto f1 = fit_template(t, s1);
+  const auto f3 = fit_template(t3, s2);
+  const auto corr = canonical_correspondence(t, s1, f1, t3, s2, f3);
+  REQUIRE(corr.size() == 500);
+  index_t close = 0, legs = 0, on_leg = 0;
+  for (std::size_t i = 0; i < corr.size(); ++i) {
+    if (f1.labels[i] != 2) continue;
+    ++legs;
+    on_leg += f3.labels[static_cast<std::size_t>(corr[i])] == 2 ? 1 : 0;
+    close += (s1.points.row(static_cast<index_t>(i)) - s2.points.row(corr[i])).norm() < 0.05 ? 1 : 0;
+  }
+  REQUIRE(legs > 20);
+  CHECK(static_cast<double>(on_leg) / static_cast<double>(legs) > 0.95);
+  CHECK(static_cast<double>(close) / static_cast<double>(legs) > 0.9);
 }
 
 TEST_CASE("make_shape_samples bad input") {

@@ -3,6 +3,7 @@
 // 5.4.5) and shape-to-shape correspondences through it.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -44,16 +45,42 @@ inline Eigen::Matrix<double, Eigen::Dynamic, 3> co_aligned_points(const part_tem
   return out;
 }
 
-/// Correspondences from shape A's samples to shape B's samples through the canonical space (5.4.5): each
-/// co-aligned point of A maps to the nearest co-aligned point of B carrying the same part (any point of B when
-/// A's point is null or B has no point of that part). Both shapes must be fitted to the same template.
-/// \returns per sample of A, a sample index of B. O((P_A + P_B) log P_B).
-inline std::vector<index_t> canonical_correspondence(const part_template& t, const shape_samples& sa,
-                                                     const template_fit& fa, const shape_samples& sb,
-                                                     const template_fit& fb) {
-  const auto A = co_aligned_points(t, sa, fa);
-  const auto B = co_aligned_points(t, sb, fb);
-  const index_t K = t.num_parts();
+/// Correspondences between the parts of two templates: part a of `ta` maps to the part of `tb` with the same
+/// output label (part_box::label) whose mean centre is nearest to a's mean centre, or to -1 when `tb` has no
+/// part with that label. For ta == tb this is the identity. Labels are what make parts of different templates
+/// "mean the same thing" (hand-authored sets share them; spawned templates inherit them), which is how the
+/// chapter relates the templates of one collection. O(K_a K_b).
+inline std::vector<index_t> template_part_map(const part_template& ta, const part_template& tb) {
+  std::vector<index_t> out(ta.parts.size(), -1);
+  for (std::size_t a = 0; a < ta.parts.size(); ++a) {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t b = 0; b < tb.parts.size(); ++b) {
+      if (tb.parts[b].label != ta.parts[a].label) continue;
+      const double d = (tb.parts[b].center - ta.parts[a].center).squaredNorm();
+      if (d < best) {
+        best = d;
+        out[a] = static_cast<index_t>(b);
+      }
+    }
+  }
+  return out;
+}
+
+/// Correspondences from shape A's samples to shape B's samples through the canonical space (5.4.5), also when A
+/// and B were fitted to different templates of one set: a sample of A on part a at unit-box coordinate u, with
+/// offset o from its deformed box, goes to the point m_b(u) + o of the mean box b = template_part_map(ta, tb)[a]
+/// of B's template and from there to the nearest co-aligned sample of B on part b. Samples whose part has no
+/// counterpart (or is null, or empty in B) go to the nearest co-aligned sample of B overall.
+/// \param ta, sa, fa  A's template, samples and fit_template(ta, sa); \param tb, sb, fb  the same for B.
+/// \throws invalid_input size_mismatch when a fit does not belong to its samples / template.
+/// \returns per sample of A, a sample index of B. O(K_a K_b + (P_A + P_B) log P_B).
+inline std::vector<index_t> canonical_correspondence(const part_template& ta, const shape_samples& sa,
+                                                     const template_fit& fa, const part_template& tb,
+                                                     const shape_samples& sb, const template_fit& fb) {
+  const auto A = co_aligned_points(ta, sa, fa);
+  const auto B = co_aligned_points(tb, sb, fb);
+  const auto pmap = template_part_map(ta, tb);
+  const index_t K = tb.num_parts();
   std::vector<std::vector<index_t>> members(static_cast<std::size_t>(K));
   for (index_t j = 0; j < sb.size(); ++j)
     if (fb.parts[static_cast<std::size_t>(j)] >= 0) members[static_cast<std::size_t>(fb.parts[static_cast<std::size_t>(j)])].push_back(j);
@@ -67,9 +94,17 @@ inline std::vector<index_t> canonical_correspondence(const part_template& t, con
   const knn_index<double, 3> all(B);
   std::vector<index_t> out(static_cast<std::size_t>(sa.size()));
   for (index_t i = 0; i < sa.size(); ++i) {
-    const index_t b = fa.parts[static_cast<std::size_t>(i)];
-    const Eigen::Vector3d q = A.row(i).transpose();
+    const index_t a = fa.parts[static_cast<std::size_t>(i)];
+    const index_t b = a >= 0 ? pmap[static_cast<std::size_t>(a)] : -1;
+    Eigen::Vector3d q = A.row(i).transpose();
     if (b >= 0 && !members[static_cast<std::size_t>(b)].empty()) {
+      if (&ta != &tb) {  // move from A's mean box to B's: same unit-box coordinate, same offset
+        const auto& pa = ta.parts[static_cast<std::size_t>(a)];
+        const auto& pb = tb.parts[static_cast<std::size_t>(b)];
+        const Eigen::Vector3d& u = fa.correspondence[static_cast<std::size_t>(i)].u;
+        q += (pb.center + pb.axes.transpose() * pb.size.cwiseProduct(u)) -
+             (pa.center + pa.axes.transpose() * pa.size.cwiseProduct(u));
+      }
       const auto nn = trees[static_cast<std::size_t>(b)].nearest(q);
       out[static_cast<std::size_t>(i)] = members[static_cast<std::size_t>(b)][static_cast<std::size_t>(nn.index)];
     } else {
@@ -77,6 +112,16 @@ inline std::vector<index_t> canonical_correspondence(const part_template& t, con
     }
   }
   return out;
+}
+
+/// Correspondences from shape A's samples to shape B's samples through the canonical space (5.4.5): each
+/// co-aligned point of A maps to the nearest co-aligned point of B carrying the same part (any point of B when
+/// A's point is null or B has no point of that part). Both shapes must be fitted to the same template t.
+/// \returns per sample of A, a sample index of B. O((P_A + P_B) log P_B).
+inline std::vector<index_t> canonical_correspondence(const part_template& t, const shape_samples& sa,
+                                                     const template_fit& fa, const shape_samples& sb,
+                                                     const template_fit& fb) {
+  return canonical_correspondence(t, sa, fa, t, sb, fb);
 }
 
 }  // namespace shapestruct
