@@ -1,6 +1,7 @@
 # Landmark correspondence error curve of part-based templates on 200 generated chairs (docs/part_templates.md).
-# Data: run_template_landmarks S200 --template docs/templates/synthetic_chairs.json --threads 1 --curve hand_set.dat
-#       run_template_landmarks S200 --template docs/templates/synthetic_chair.json --threads 1 --curve hand_one.dat
+# Data (S200 = the first 200 files of `shapestruct generate chairs 1000 -o S --seed 7`, symlinked with .pts/.seg):
+#   run_template_landmarks S200 --template docs/templates/synthetic_chairs.json --threads 1 --curve docs/templates/landmark_curve_set.dat
+#   run_template_landmarks S200 --template docs/templates/synthetic_chair.json --threads 1 --curve docs/templates/landmark_curve_one.dat
 # Columns: D, fraction within D through the templates, sampling floor, no-template baseline.
 # Plot:   gnuplot -e "dir='docs/templates'" docs/templates/landmark_curve.gp
 if (!exists("dir")) dir = 'docs/templates'
