@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // run_template_coseg: COSEG-protocol labeling accuracy of part-based templates (dissertation 5.4.3, Table 5.1).
-//   run_template_coseg CLASS_DIR [--template T.json] [--points N] [--threads N] [--init]
+//   run_template_coseg CLASS_DIR [--template T.json] [--points N] [--threads N] [--init] [--parts K]
 // CLASS_DIR holds shapes/*.off and gt/*.seg (e.g. $SHAPESTRUCT_DATA/coseg_subset/res/chairs). With --template the
 // given (user-authored) template set is fitted and then learned on the collection; without it the fully automatic
-// initialisation is used. --init reports the initial templates' accuracy without learning.
+// initialisation is used (--parts K: N_seg Voronoi seeds per candidate, default 4). --init reports the initial
+// templates' accuracy without learning.
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -28,7 +29,8 @@ using namespace shapestruct;
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::cerr << "usage: run_template_coseg CLASS_DIR [--template T.json] [--points N] [--threads N] [--init]\n";
+    std::cerr << "usage: run_template_coseg CLASS_DIR [--template T.json] [--points N] [--threads N] [--init] "
+                 "[--parts K]\n";
     return 2;
   }
   const fs::path dir = argv[1];
@@ -36,12 +38,14 @@ int main(int argc, char** argv) {
   index_t points = 1500;
   int threads = 0;
   bool init_only = false;
+  template_initializer_options io;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--template" && i + 1 < argc) tpl_path = argv[++i];
     else if (a == "--points" && i + 1 < argc) points = std::stol(argv[++i]);
     else if (a == "--threads" && i + 1 < argc) threads = std::stoi(argv[++i]);
     else if (a == "--init") init_only = true;
+    else if (a == "--parts" && i + 1 < argc) io.parts = std::stoi(argv[++i]);
   }
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(dir / "shapes"))
@@ -72,7 +76,7 @@ int main(int argc, char** argv) {
   if (!tpl_path.empty()) {
     templates = read_templates(tpl_path);
   } else {
-    templates = auto_templates(samples, lo);
+    templates = auto_templates(samples, lo, io);
   }
   if (!init_only) templates = learn_templates(templates, samples, lo).templates;
   const auto t2 = std::chrono::steady_clock::now();
