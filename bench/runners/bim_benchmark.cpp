@@ -102,6 +102,9 @@ int main(int argc, char** argv) {
   std::string data_dir = std::getenv("SHAPESTRUCT_DATA") ? std::getenv("SHAPESTRUCT_DATA") : "";
   std::string set = "scape", out_dir = "bim_results";
   int limit = -1, stride = 1, offset = 0, threads = 0;
+  bool diagnose_groups = false;
+  double eigenvalue_fraction = -1;
+  int max_eigenvectors = -1, max_groups = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -118,9 +121,14 @@ int main(int argc, char** argv) {
     else if (a == "--stride") stride = std::max(1, std::stoi(next()));
     else if (a == "--offset") offset = std::stoi(next());
     else if (a == "--threads") threads = std::stoi(next());
+    else if (a == "--groups") diagnose_groups = true;
+    else if (a == "--eigenvalue-fraction") eigenvalue_fraction = std::stod(next());
+    else if (a == "--max-eigenvectors") max_eigenvectors = std::stoi(next());
+    else if (a == "--max-groups") max_groups = std::stoi(next());
     else {
       std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec|humans|animals --out DIR [--limit N] [--stride K] "
-                   "[--offset O] [--threads T]\n";
+                   "[--offset O] [--threads T] [--groups]\n"
+                   "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G]\n";
       return 2;
     }
   }
@@ -139,7 +147,19 @@ int main(int argc, char** argv) {
   // (the library leaves them off by default).
   options.shape.close_small_holes = true;
   options.shape.keep_largest_component = true;
+  // --groups: build every blended map in full and score each one against the truth (<set>_groups.csv), to see
+  // whether the selection picked the best group and what each group's measures were.
+  options.full_maps_for_all_groups = diagnose_groups;
+  if (eigenvalue_fraction >= 0) options.eigenvalue_fraction = eigenvalue_fraction;
+  if (max_eigenvectors > 0) options.max_eigenvectors = max_eigenvectors;
+  if (max_groups > 0) options.max_groups = max_groups;
   const blended_matcher<> matcher(options);
+  std::ofstream groups_csv;
+  if (diagnose_groups) {
+    groups_csv.open(fs::path(out_dir) / (set + "_groups.csv"));
+    groups_csv << "source,target,group,maps,eigen_weight,score,confidence_integral,geodesic_distortion,convexity_mismatch,mean,mean_sym,"
+                  "selected\n";
+  }
 
   std::ofstream csv(fs::path(out_dir) / (set + "_pairs.csv"));
   csv << "source,target,src_vertices,tgt_vertices,src_features,tgt_features,candidates,groups,time_total,time_prep,"
@@ -253,6 +273,25 @@ int main(int argc, char** argv) {
       }
       const auto e_raw = geodesic_errors(sb.geodesics(), std::span<const index_t>(pred_i), std::span<const index_t>(truth_i), 2.0, threads);
       const auto e_sym = geodesic_errors(sb.geodesics(), std::span<const index_t>(pred_i), std::span<const index_t>(sym_i), 2.0, threads);
+      if (diagnose_groups) {
+        for (std::size_t g = 0; g < r.blended.size(); ++g) {
+          const auto& bc = r.blended[g];
+          std::vector<index_t> gi;
+          for (index_t sp : src_pts) {
+            const index_t p = bc.map.nearest.empty() ? no_index : bc.map.nearest[static_cast<std::size_t>(sp)];
+            gi.push_back(p == no_index ? no_index : sb.internal_vertex(p));
+          }
+          const auto g_raw = summarize_errors(std::span<const double>(geodesic_errors(
+              sb.geodesics(), std::span<const index_t>(gi), std::span<const index_t>(truth_i), 2.0, threads)));
+          const auto g_sym = summarize_errors(std::span<const double>(geodesic_errors(
+              sb.geodesics(), std::span<const index_t>(gi), std::span<const index_t>(sym_i), 2.0, threads)));
+          groups_csv << pr.source.name() << "," << pr.target.name() << "," << g << "," << bc.maps.size() << ","
+                     << fmt(bc.eigen_weight) << "," << fmt(bc.score) << "," << fmt(bc.confidence_integral) << ","
+                     << fmt(bc.geodesic_distortion) << "," << fmt(bc.convexity_mismatch) << "," << fmt(g_raw.mean) << "," << fmt(g_sym.mean) << ","
+                     << (static_cast<index_t>(g) == r.selected ? 1 : 0) << "\n";
+        }
+        groups_csv.flush();
+      }
       const auto s_raw = summarize_errors(std::span<const double>(e_raw));
       const auto s_sym = summarize_errors(std::span<const double>(e_sym));
       const bool flipped = s_sym.mean < s_raw.mean;

@@ -36,6 +36,31 @@ inline triangle_mesh<double> armed_sphere(int level = 4, int arms = 5) {
   return m;
 }
 
+/// A creature with an intrinsic 180-degree symmetry that is not an extrinsic one: a sphere with two equal arms
+/// along +-x and two unequal ones along +-z, a dome at +y and, at -y, the same cap reflected through the plane of
+/// its rim (a dimple). Reflecting a cap through its rim plane is an isometry, so the rotation (x, y, z) ->
+/// (-x, -y, z) is an intrinsic symmetry (front to back, the x arms swapped) that only extrinsic cues break:
+/// exactly the situation of a human's front and back.
+inline triangle_mesh<double> front_back_creature(int level = 4) {
+  auto m = make_icosphere<double>(level);
+  const double dirs[4][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 0, 1}, {0, 0, -1}};
+  const double lens[4] = {1.2, 1.2, 1.5, 0.8};
+  const double cos_cap = 0.88;
+  for (index_t v = 0; v < m.V.rows(); ++v) {
+    const Eigen::Vector3d p = m.V.row(v).transpose().normalized();
+    double r = 1;
+    for (int k = 0; k < 4; ++k) {
+      const double t = std::max(0.0, (p.dot(Eigen::Vector3d(dirs[k][0], dirs[k][1], dirs[k][2])) - cos_cap) / (1 - cos_cap));
+      r += lens[k] * t * t;
+    }
+    Eigen::Vector3d q = r * p;
+    const double rim = 0.8;  // the caps |y| > rim lie on the unit sphere (the arms are far from them)
+    if (q.y() < -rim) q.y() = -2 * rim - q.y();
+    m.V.row(v) = q.transpose();
+  }
+  return m;
+}
+
 /// The mesh rotated, translated and with its vertices renumbered by a seeded random permutation.
 /// perm[old] = new index.
 inline triangle_mesh<double> moved_and_permuted(const triangle_mesh<double>& m, std::vector<index_t>& perm,

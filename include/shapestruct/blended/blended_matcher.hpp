@@ -46,6 +46,11 @@ struct blended_matcher_options {
   /// evaluated at every vertex, unless full_maps_for_all_groups. 0 = score on all faces.
   index_t score_faces = 6000;
   bool full_maps_for_all_groups = false;  ///< also fill blended_candidate::map of the groups not selected
+  /// Flip disambiguation: the blended map with the highest score - convexity_weight * convexity_mismatch is
+  /// selected (blended_candidate). The chapter selects by integrated (area) confidence alone (weight 0), which
+  /// cannot tell a map from its intrinsic 180-degree flip when the two are near-isometric; the convexity
+  /// mismatch is extrinsic (bumps must map to bumps). See docs/blended_maps.md for the measurements behind 5.
+  double convexity_weight = 5.0;
   int threads = 0;             ///< std::threads, 0 = all cores; the result does not depend on it
   /// Progress callback (stage name, seconds spent in it); the library never prints.
   std::function<void(const std::string&, double)> on_stage{};
@@ -57,6 +62,21 @@ struct blended_candidate {
   std::vector<index_t> maps;   ///< indices into blended_match_result::candidates
   Scalar eigen_weight = 0;     ///< sum of |eigenvector entries| of the group's maps
   Scalar score = 0;            ///< integrated area preservation of the blended map, in [0, 1] (higher is better)
+  /// Integrated confidence of the group (ch. 3.3.5): mean over the even samples of the confidence-weighted mean
+  /// confidence of the group's maps, in [0, 1].
+  Scalar confidence_integral = 0;
+  /// Geodesic distortion of the blended map at the even samples: mean over sample pairs of
+  /// |d_source(s, t) - d_target(f(s), f(t))| in unit-area units (lower is better). d_target is read from the
+  /// target's sample table via the target sample nearest to f(t), so it carries an error up to the sampling's
+  /// covering radius, the same for every group.
+  Scalar geodesic_distortion = 0;
+  /// Mean over the even samples s of |convexity_source(s) - convexity_target(f(s))| (blended_shape::
+  /// sample_convexity, averaged over the radii; both values interpolated from their shape's samples). Intrinsic
+  /// measures cannot tell a map from its intrinsic flip (front of a human to the back); this extrinsic but
+  /// rigid- and pose-robust one can (noses, knee caps and toes are bumps, their flipped images are not).
+  Scalar convexity_mismatch = 0;
+  /// What the selection maximises: score - blended_matcher_options::convexity_weight * convexity_mismatch.
+  Scalar selection_score = 0;
   /// The blended map (source vertices -> target surface points); empty for unselected groups unless
   /// blended_matcher_options::full_maps_for_all_groups (blended_matcher::blend_group rebuilds it).
   surface_map<Scalar> map;
@@ -81,9 +101,11 @@ struct blended_match_result {
 ///   Consistency(a, b, maps, c, threads) -> sparse symmetric S~                 (geodesic_consistency)
 /// Pipeline: candidates -> confidences -> S~ -> top eigenvectors (Spectra) -> groups of non-conflicting maps
 /// with binary weights -> one blended map per group, f(p) = closest point on the target to the confidence-weighted
-/// centroid of the candidate images (ch. 3.3.5) -> the blended map that preserves area best overall.
+/// centroid of the candidate images (ch. 3.3.5) -> the blended map that preserves area best overall, with
+/// near-ties broken by extrinsic convexity.
 /// Symmetric flips: a flipped near-isometry forms its own group (its maps conflict with the true ones), so it is
-/// scored separately and loses on integrated area preservation (feet, knees, buttocks distort more).
+/// scored separately; it distorts area more at feet, knees and buttocks (the chapter's cue), and it maps bumps
+/// (nose, knee caps, toes) onto flat or hollow places, which the convexity mismatch measures.
 /// Models PairwiseMatcher. Per-shape work is in blended_shape: prepare() each shape once and call match() on
 /// the prepared shapes to match one shape against many.
 template <class Candidates = triplet_candidates, class Confidence = area_confidence,
@@ -163,17 +185,24 @@ class blended_matcher {
       bc.maps = g.maps;
       bc.eigen_weight = g.weight;
       blend(a, b, out, bc, !options_.full_maps_for_all_groups);
+      bc.selection_score = bc.score - options_.convexity_weight * bc.convexity_mismatch;
       out.blended.push_back(std::move(bc));
     }
     index_t best = 0;
     for (index_t g = 1; g < static_cast<index_t>(out.blended.size()); ++g)
-      if (out.blended[static_cast<std::size_t>(g)].score > out.blended[static_cast<std::size_t>(best)].score) best = g;
+      if (out.blended[static_cast<std::size_t>(g)].selection_score >
+          out.blended[static_cast<std::size_t>(best)].selection_score)
+        best = g;
     out.selected = best;
     auto& chosen = out.blended[static_cast<std::size_t>(best)];
     if (chosen.map.points.empty()) {
-      const Scalar score = chosen.score;
+      // Re-blending at every vertex: keep the measures taken on the scored subset, which the selection used.
+      const blended_candidate<Scalar> scored = chosen;
       blend(a, b, out, chosen, false);
-      chosen.score = score;
+      chosen.score = scored.score;
+      chosen.confidence_integral = scored.confidence_integral;
+      chosen.geodesic_distortion = scored.geodesic_distortion;
+      chosen.convexity_mismatch = scored.convexity_mismatch;
     }
     out.map = chosen.map;
     stage("blending", t);
@@ -264,6 +293,7 @@ class blended_matcher {
       std::vector<char> need(static_cast<std::size_t>(nv), 0);
       for (index_t f = 0; f < Fa.rows(); f += face_stride)
         for (int k = 0; k < 3; ++k) need[static_cast<std::size_t>(Fa(f, k))] = 1;
+      for (index_t s : a.samples()) need[static_cast<std::size_t>(s)] = 1;
       for (index_t v = 0; v < nv; ++v)
         if (need[static_cast<std::size_t>(v)]) todo.push_back(v);
     } else {
@@ -306,6 +336,7 @@ class blended_matcher {
       score += ratio > 0 ? A * Scalar(2) / (ratio + Scalar(1) / ratio) : Scalar(0);
     }
     bc.score = scored_area > 0 ? score / scored_area : Scalar(0);
+    sample_measures(a, b, r, bc, pts);
     if (score_only) return;
     // Back to the input numbering (repairs may have renumbered or added vertices).
     const index_t n_out = a.original_size();
@@ -329,6 +360,77 @@ class blended_matcher {
       bc.map.points[static_cast<std::size_t>(v)] = p;
       bc.map.nearest[static_cast<std::size_t>(v)] = best;
     }
+  }
+
+  /// Integrated confidence and geodesic distortion of a blended map (see blended_candidate).
+  static void sample_measures(const blended_shape<double>& a, const blended_shape<double>& b,
+                              const blended_match_result<double>& r, blended_candidate<double>& bc,
+                              const std::vector<surface_point<double>>& pts) {
+    const auto& samples = a.samples();
+    const index_t ns = static_cast<index_t>(samples.size());
+    if (ns == 0) return;
+    double conf = 0;
+    for (index_t s = 0; s < ns; ++s) {
+      double c1 = 0, c2 = 0;
+      for (index_t i : bc.maps) {
+        const double c = r.confidence(i, s);
+        c1 += c;
+        c2 += c * c;
+      }
+      conf += c1 > 0 ? c2 / c1 : 0.0;
+    }
+    bc.confidence_integral = conf / static_cast<double>(ns);
+    // Image of every sample as a target vertex, and the target sample nearest to it.
+    const auto& Fb = b.mesh().F;
+    const auto& Tb = b.sample_distances();
+    std::vector<index_t> image(static_cast<std::size_t>(ns), no_index), image_sample(static_cast<std::size_t>(ns), 0);
+    for (index_t s = 0; s < ns; ++s) {
+      const auto& p = pts[static_cast<std::size_t>(samples[static_cast<std::size_t>(s)])];
+      if (!p.valid()) continue;
+      int k = 0;
+      for (int c = 1; c < 3; ++c)
+        if (p.bary[c] > p.bary[k]) k = c;
+      const index_t v = Fb(p.face, k);
+      image[static_cast<std::size_t>(s)] = v;
+      Tb.row(v).minCoeff(&image_sample[static_cast<std::size_t>(s)]);
+    }
+    const auto& Ta = a.sample_distances();
+    double sum = 0;
+    std::size_t count = 0;
+    for (index_t s = 0; s < ns; ++s) {
+      const index_t vs = image[static_cast<std::size_t>(s)];
+      if (vs == no_index) continue;
+      for (index_t t = 0; t < ns; ++t) {
+        if (t == s || image[static_cast<std::size_t>(t)] == no_index) continue;
+        const double da = Ta(samples[static_cast<std::size_t>(s)], t);
+        const double db = Tb(vs, image_sample[static_cast<std::size_t>(t)]);
+        sum += std::abs(da - db);
+        ++count;
+      }
+    }
+    bc.geodesic_distortion = count > 0 ? sum / static_cast<double>(count) : 0.0;
+    const auto& Ca = a.sample_convexity();
+    const auto& Cb = b.sample_convexity();
+    double mismatch = 0;
+    std::size_t mapped = 0;
+    if (Ca.cols() > 0 && Ca.cols() == Cb.cols()) {
+      for (index_t s = 0; s < ns; ++s) {
+        if (image[static_cast<std::size_t>(s)] == no_index) continue;
+        // Both descriptors interpolated from their shape's samples (like the confidences), so that both sides
+        // are smoothed alike and a perfect map has no mismatch.
+        const auto interpolated = [](const blended_shape<double>& shape, const matrix_x<double>& C, index_t v) {
+          Eigen::RowVectorXd c = Eigen::RowVectorXd::Zero(C.cols());
+          for (index_t k = 0; k < shape.interpolation_index().cols(); ++k)
+            c += shape.interpolation_weight()(v, k) * C.row(shape.interpolation_index()(v, k));
+          return c;
+        };
+        const Eigen::RowVectorXd ca = interpolated(a, Ca, samples[static_cast<std::size_t>(s)]);
+        const Eigen::RowVectorXd cb = interpolated(b, Cb, image[static_cast<std::size_t>(s)]);
+        mismatch += (ca - cb).cwiseAbs().mean();
+        ++mapped;
+      }
+    }
+    bc.convexity_mismatch = mapped > 0 ? mismatch / static_cast<double>(mapped) : 0.0;
   }
 
   blended_matcher_options options_{};

@@ -22,6 +22,7 @@
 #include "shapestruct/geometry/dijkstra_geodesics.hpp"
 #include "shapestruct/geometry/farthest_point_sampling.hpp"
 #include "shapestruct/geometry/average_geodesic_distance.hpp"
+#include "shapestruct/geometry/geodesic_ball_convexity.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
 #include "shapestruct/geometry/mesh_repair.hpp"
 
@@ -43,6 +44,10 @@ struct blended_shape_options {
   bool close_small_holes = false;    ///< fill boundary loops of at most max_hole_edges edges
   index_t max_hole_edges = 64;
   bool keep_largest_component = false;  ///< drop all but the largest connected component
+  /// Geodesic radii (unit-area units) of the per-sample convexity descriptor (geodesic_ball_convexity) that
+  /// blended_matcher uses to tell a blended map from its intrinsic flip; about a nose, a knee and a foot on a
+  /// unit-area human. Empty = no descriptor.
+  std::vector<double> convexity_radii{0.04, 0.08, 0.16};
   mid_edge_flattening_options flattening{};
   int threads = 0;  ///< std::threads for the geodesic tables, 0 = all cores; results do not depend on it
 };
@@ -134,6 +139,9 @@ class blended_shape {
       interp_weight_.row(v) /= sum;
     });
     cpq_ = std::make_shared<closest_point_query<Scalar>>(mesh_.V, mesh_.F);
+    std::vector<Scalar> radii(options.convexity_radii.begin(), options.convexity_radii.end());
+    convexity_ = geodesic_ball_convexity<Scalar>(mesh_.V, mesh_.F, table_, std::span<const index_t>(samples_),
+                                                 std::span<const Scalar>(radii), options.threads);
   }
 
   /// The (possibly repaired) mesh scaled to unit area.
@@ -148,6 +156,8 @@ class blended_shape {
   [[nodiscard]] const matrix_x<Scalar>& sample_distances() const noexcept { return table_; }
   /// Covering radius of the samples (unit-area units).
   [[nodiscard]] Scalar sample_spacing() const noexcept { return spacing_; }
+  /// (#samples x #convexity radii) signed convexity of the surface around each sample (geodesic_ball_convexity).
+  [[nodiscard]] const matrix_x<Scalar>& sample_convexity() const noexcept { return convexity_; }
   /// AGD (#V, unit-area units, estimated from the samples) and its maxima (feature points), strongest first.
   [[nodiscard]] const vector_x<Scalar>& agd() const noexcept { return agd_; }
   [[nodiscard]] const std::vector<index_t>& features() const noexcept { return features_; }
@@ -178,6 +188,7 @@ class blended_shape {
   std::vector<index_t> samples_;
   Scalar spacing_ = 1;
   matrix_x<Scalar> table_;
+  matrix_x<Scalar> convexity_;
   vector_x<Scalar> agd_;
   std::vector<index_t> features_;
   matrix_x<Scalar> feature_table_;
