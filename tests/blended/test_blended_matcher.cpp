@@ -121,6 +121,7 @@ TEST_CASE("blended_matcher tells a map from its intrinsic flip by convexity (dom
   const auto moved = test::moved_and_permuted(m, perm);
   auto o = small_options();
   o.full_maps_for_all_groups = true;
+  o.convexity_weight = 5;
   const auto target = blended_matcher<>(o).prepare(moved);
   const auto r = blended_matcher<>(o).match(m, moved);
   INFO("groups: " << r.blended.size());
