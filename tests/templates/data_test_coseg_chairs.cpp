@@ -2,6 +2,9 @@
 // COSEG chairs with the hand-authored template (docs/templates/chair.json): a few seconds, skipped without data.
 #include <doctest/doctest.h>
 
+#include <filesystem>
+#include <vector>
+
 #include "shapestruct/eval/labeling_accuracy.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
 #include "shapestruct/io/read_mesh.hpp"
@@ -14,6 +17,20 @@
 
 using namespace shapestruct;
 
+namespace {
+/// A fitted chair's face labels beside its ground truth (COSEG .seg is 1-based), weighted by face area.
+labeled_shape scored_shape(const triangle_mesh<double>& m, const shape_samples& s, const std::vector<index_t>& labels,
+                           const std::filesystem::path& seg) {
+  labeled_shape ls;
+  ls.predicted = project_labels_to_faces(m, s, labels);
+  ls.truth = read_segmentation(seg, m.F.rows());
+  for (auto& x : ls.truth) x -= 1;
+  const auto A = face_areas<double>(m.V, m.F);
+  ls.weight.assign(A.data(), A.data() + A.size());
+  return ls;
+}
+}  // namespace
+
 TEST_CASE("COSEG chairs: the hand-authored chair template labels three chairs above 95 %") {
   SHAPESTRUCT_REQUIRE_DATA(dir, "coseg_subset/res/chairs");
   const auto t = read_templates(std::string(SHAPESTRUCT_TEST_SOURCE_DIR) + "/../docs/templates/chair.json").at(0);
@@ -22,13 +39,7 @@ TEST_CASE("COSEG chairs: the hand-authored chair template labels three chairs ab
     const auto m = read_mesh(dir / "shapes" / (std::string(id) + ".off")).mesh;
     const auto s = make_shape_samples(m);
     const auto f = fit_template(t, s);
-    labeled_shape ls;
-    ls.predicted = project_labels_to_faces(m, s, f.labels);
-    ls.truth = read_segmentation(dir / "gt" / (std::string(id) + ".seg"), m.F.rows());
-    for (auto& x : ls.truth) x -= 1;
-    const auto A = face_areas<double>(m.V, m.F);
-    ls.weight.assign(A.data(), A.data() + A.size());
-    scored.push_back(std::move(ls));
+    scored.push_back(scored_shape(m, s, f.labels, dir / "gt" / (std::string(id) + ".seg")));
   }
   const auto acc = labeling_accuracy(scored);
   MESSAGE("accuracy " << acc.accuracy);
@@ -54,13 +65,7 @@ TEST_CASE("COSEG chairs: the chair-and-stool set picks a stool template for the 
     }
     // The stool has no back: a template with a must-exist back must not win it; the chair keeps the chair.
     CHECK(which == (std::string(id) == "22" ? 2u : 0u));
-    labeled_shape ls;
-    ls.predicted = project_labels_to_faces(m, s, best.labels);
-    ls.truth = read_segmentation(dir / "gt" / (std::string(id) + ".seg"), m.F.rows());
-    for (auto& x : ls.truth) x -= 1;
-    const auto A = face_areas<double>(m.V, m.F);
-    ls.weight.assign(A.data(), A.data() + A.size());
-    scored.push_back(std::move(ls));
+    scored.push_back(scored_shape(m, s, best.labels, dir / "gt" / (std::string(id) + ".seg")));
   }
   // Shared output labels across the set: one mapping serves both shapes.
   const auto acc = labeling_accuracy(scored);
