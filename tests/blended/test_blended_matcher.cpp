@@ -102,8 +102,11 @@ TEST_CASE("blended_matcher keeps every candidate blended map with its score and 
   for (const auto& b : r.blended) {
     CHECK(b.score >= 0);
     CHECK(b.score <= 1);
-    CHECK(b.selection_score <= r.blended[static_cast<std::size_t>(r.selected)].selection_score);
+    CHECK(b.selection_rank >= r.blended[static_cast<std::size_t>(r.selected)].selection_rank);
+    CHECK(b.selection_rank <= 2 * static_cast<index_t>(r.blended.size() - 1));
     CHECK(b.selection_score == doctest::Approx(b.score - o.convexity_weight * b.convexity_mismatch));
+    CHECK(b.confidence_integral >= 0);
+    CHECK(b.confidence_integral <= 1);
     CHECK(b.convexity_mismatch >= 0);
     CHECK(b.geodesic_distortion >= 0);
     CHECK(b.map.source_size() == m.V.rows());
@@ -122,6 +125,7 @@ TEST_CASE("blended_matcher tells a map from its intrinsic flip by convexity (dom
   auto o = small_options();
   o.full_maps_for_all_groups = true;
   o.convexity_weight = 5;
+  o.selection = blended_selection::area_score;  // isolate the convexity tie-break
   const auto target = blended_matcher<>(o).prepare(moved);
   const auto r = blended_matcher<>(o).match(m, moved);
   INFO("groups: " << r.blended.size());

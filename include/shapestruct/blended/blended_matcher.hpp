@@ -28,6 +28,17 @@
 
 namespace shapestruct {
 
+/// How blended_matcher picks one blended map among those of the consistent groups.
+enum class blended_selection {
+  /// The highest area preservation of the blended map itself (blended_candidate::score).
+  area_score,
+  /// The lowest sum of the map's rank by area preservation and its rank by the chapter's integrated confidence
+  /// (ties: higher area score). A flip must win on both to be chosen. Measured with `run_bim_benchmark --groups`
+  /// against area_score: 67 cross-set human pairs mean error 0.1037 -> 0.1006 (13 -> 12 flips), every 2nd
+  /// pair 0.0915 -> 0.0849 (8 -> 7), 14 SCAPE pairs unchanged (0.0374), TOSCA michael3->michael1 0.269 -> 0.023.
+  area_and_confidence_rank,
+};
+
 /// Options of blended_matcher (dissertation ch. 3 defaults).
 struct blended_matcher_options {
   blended_shape_options shape{};  ///< per-shape precomputation (samples, features, repairs)
@@ -46,13 +57,14 @@ struct blended_matcher_options {
   /// evaluated at every vertex, unless full_maps_for_all_groups. 0 = score on all faces.
   index_t score_faces = 6000;
   bool full_maps_for_all_groups = false;  ///< also fill blended_candidate::map of the groups not selected
-  /// Flip disambiguation: the blended map with the highest score - convexity_weight * convexity_mismatch is
-  /// selected (blended_candidate). 0 (the default) is the chapter's rule, area preservation alone, which cannot
-  /// tell a map from its intrinsic 180-degree flip when the two are near-isometric. The convexity mismatch is
-  /// extrinsic (bumps must map to bumps) and separates shapes whose two sides differ in relief (a dome against
-  /// a dimple: weight 5 picks the true map where area picks the flip). On the benchmark's humans it did not
-  /// (36 human and 13 SCAPE pairs: the flip's and the truth's mismatch differ by less than the noise), so it is
-  /// off by default; docs/blended_maps.md has the measurements.
+  /// How the blended map is selected among the groups' maps (flip disambiguation, see blended_selection).
+  blended_selection selection = blended_selection::area_and_confidence_rank;
+  /// Optional extrinsic tie-break: the area term of the selection is score - convexity_weight *
+  /// convexity_mismatch (blended_candidate). Intrinsic measures cannot tell a map from its intrinsic 180-degree
+  /// flip when both are near-isometric; the convexity mismatch (bumps must map to bumps) can, and weight 5 picks
+  /// the true map of a dome-versus-dimple creature where area alone picks the flip. On the benchmark's humans
+  /// the flip's and the truth's mismatch differ by less than the noise, so it is off (0) by default;
+  /// docs/blended_maps.md has the measurements.
   double convexity_weight = 0.0;
   int threads = 0;             ///< std::threads, 0 = all cores; the result does not depend on it
   /// Progress callback (stage name, seconds spent in it); the library never prints.
@@ -78,8 +90,11 @@ struct blended_candidate {
   /// measures cannot tell a map from its intrinsic flip (front of a human to the back); this extrinsic but
   /// rigid- and pose-robust one can (noses, knee caps and toes are bumps, their flipped images are not).
   Scalar convexity_mismatch = 0;
-  /// What the selection maximises: score - blended_matcher_options::convexity_weight * convexity_mismatch.
+  /// The selection's area term: score - blended_matcher_options::convexity_weight * convexity_mismatch.
   Scalar selection_score = 0;
+  /// Rank sum used by blended_selection::area_and_confidence_rank (0 = best on both); the selected map has the
+  /// smallest. With blended_selection::area_score it is the rank by selection_score alone.
+  index_t selection_rank = 0;
   /// The blended map (source vertices -> target surface points); empty for unselected groups unless
   /// blended_matcher_options::full_maps_for_all_groups (blended_matcher::blend_group rebuilds it).
   surface_map<Scalar> map;
@@ -104,8 +119,8 @@ struct blended_match_result {
 ///   Consistency(a, b, maps, c, threads) -> sparse symmetric S~                 (geodesic_consistency)
 /// Pipeline: candidates -> confidences -> S~ -> top eigenvectors (Spectra) -> groups of non-conflicting maps
 /// with binary weights -> one blended map per group, f(p) = closest point on the target to the confidence-weighted
-/// centroid of the candidate images (ch. 3.3.5) -> the blended map that preserves area best overall, with
-/// near-ties broken by extrinsic convexity.
+/// centroid of the candidate images (ch. 3.3.5) -> the blended map that ranks best by its own area preservation
+/// and the chapter's integrated confidence together (blended_selection).
 /// Symmetric flips: a flipped near-isometry forms its own group (its maps conflict with the true ones), so it is
 /// scored separately; it distorts area more at feet, knees and buttocks (the chapter's cue), and it maps bumps
 /// (nose, knee caps, toes) onto flat or hollow places, which the convexity mismatch measures.
@@ -191,11 +206,7 @@ class blended_matcher {
       bc.selection_score = bc.score - options_.convexity_weight * bc.convexity_mismatch;
       out.blended.push_back(std::move(bc));
     }
-    index_t best = 0;
-    for (index_t g = 1; g < static_cast<index_t>(out.blended.size()); ++g)
-      if (out.blended[static_cast<std::size_t>(g)].selection_score >
-          out.blended[static_cast<std::size_t>(best)].selection_score)
-        best = g;
+    const index_t best = select(out.blended);
     out.selected = best;
     auto& chosen = out.blended[static_cast<std::size_t>(best)];
     if (chosen.map.points.empty()) {
@@ -363,6 +374,33 @@ class blended_matcher {
       bc.map.points[static_cast<std::size_t>(v)] = p;
       bc.map.nearest[static_cast<std::size_t>(v)] = best;
     }
+  }
+
+  /// Ranks the groups' blended maps (blended_candidate::selection_rank) and returns the selected one.
+  index_t select(std::vector<blended_candidate<double>>& maps) const {
+    const index_t n = static_cast<index_t>(maps.size());
+    std::vector<index_t> order(static_cast<std::size_t>(n));
+    const auto rank_by = [&](auto better) {
+      std::iota(order.begin(), order.end(), index_t(0));
+      std::stable_sort(order.begin(), order.end(), better);
+      for (index_t r = 0; r < n; ++r) maps[static_cast<std::size_t>(order[static_cast<std::size_t>(r)])].selection_rank += r;
+    };
+    for (auto& m : maps) m.selection_rank = 0;
+    rank_by([&](index_t x, index_t y) {
+      return maps[static_cast<std::size_t>(x)].selection_score > maps[static_cast<std::size_t>(y)].selection_score;
+    });
+    if (options_.selection == blended_selection::area_and_confidence_rank)
+      rank_by([&](index_t x, index_t y) {
+        return maps[static_cast<std::size_t>(x)].confidence_integral > maps[static_cast<std::size_t>(y)].confidence_integral;
+      });
+    index_t best = 0;
+    for (index_t g = 1; g < n; ++g) {
+      const auto& c = maps[static_cast<std::size_t>(g)];
+      const auto& b = maps[static_cast<std::size_t>(best)];
+      if (c.selection_rank < b.selection_rank || (c.selection_rank == b.selection_rank && c.selection_score > b.selection_score))
+        best = g;
+    }
+    return best;
   }
 
   /// Integrated confidence and geodesic distortion of a blended map (see blended_candidate).
