@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // run_template_coseg: COSEG-protocol labeling accuracy of part-based templates (dissertation 5.4.3, Table 5.1).
 //   run_template_coseg CLASS_DIR [--template T.json] [--points N] [--threads N] [--init] [--parts K] [--oversegment M]
-//   [--segment-only]
+//   [--segment-only] [--candidates N] [--learn-best N]
 // CLASS_DIR holds shapes/*.off and gt/*.seg (e.g. $SHAPESTRUCT_DATA/coseg_subset/res/chairs). With --template the
 // given (user-authored) template set is fitted and then learned on the collection; without it the fully automatic
 // initialisation is used (--parts K: N_seg parts per candidate, default 4; --oversegment M: initial cells merged
@@ -33,7 +33,7 @@ using namespace shapestruct;
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::cerr << "usage: run_template_coseg CLASS_DIR [--template T.json] [--points N] [--threads N] [--init] "
-                 "[--parts K] [--oversegment M] [--segment-only]\n";
+                 "[--parts K] [--oversegment M] [--segment-only] [--candidates N] [--learn-best N]\n";
     return 2;
   }
   const fs::path dir = argv[1];
@@ -52,6 +52,8 @@ int main(int argc, char** argv) {
     else if (a == "--parts" && i + 1 < argc) io.parts = std::stoi(argv[++i]);
     else if (a == "--oversegment" && i + 1 < argc) io.oversegment = std::stoi(argv[++i]);
     else if (a == "--segment-only") segment_only = true;
+    else if (a == "--candidates" && i + 1 < argc) io.candidates = std::stoi(argv[++i]);
+    else if (a == "--learn-best" && i + 1 < argc) io.learn_best = std::stoi(argv[++i]);
     else if (a == "--merge-tolerance" && i + 1 < argc) io.merge_tolerance = std::stod(argv[++i]);
   }
   std::vector<fs::path> files;

@@ -28,7 +28,7 @@ namespace shapestruct {
 /// Options of template_from_shape and auto_templates.
 struct template_initializer_options {
   int parts = 4;            ///< N_seg: parts of a candidate segmentation (Voronoi seeds when oversegment <= parts)
-  int candidates = 10;      ///< shapes segmented into candidate templates (chosen with a seeded shuffle)
+  int candidates = 0;       ///< shapes segmented into candidate templates (seeded shuffle); 0 = all (chapter)
   int learn_best = 2;       ///< fully automatic mode: learn from this many best candidates (chapter: 10)
   int up_axis = 1;
   double init_sigma = 0.08;  ///< loose Gaussians of an initial template (positions and sizes, canonical units)
@@ -430,7 +430,8 @@ inline std::pair<part_template, double> template_from_shape(const shape_samples&
   return {t, fit.energy};
 }
 
-/// Fully automatic templates (5.3.4): candidate templates from `candidates` shapes (template_from_shape),
+/// Fully automatic templates (5.3.4): candidate templates from `candidates` shapes (template_from_shape; by
+/// default every shape, as the chapter segments every shape),
 /// sorted by their fitting energy; the best `learn_best` are each learned on the collection (learn_templates)
 /// and the resulting template set with the lowest average fitting energy over the collection is returned.
 /// \throws invalid_input empty (no shapes), and those of template_from_shape / learn_templates.
@@ -442,7 +443,7 @@ inline std::vector<part_template> auto_templates(const std::vector<shape_samples
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::mt19937_64 rng(opt.seed);
   std::shuffle(order.begin(), order.end(), rng);
-  order.resize(std::min<std::size_t>(order.size(), static_cast<std::size_t>(std::max(1, opt.candidates))));
+  if (opt.candidates > 0) order.resize(std::min<std::size_t>(order.size(), static_cast<std::size_t>(opt.candidates)));
   std::vector<std::pair<double, part_template>> cands(order.size());
   detail::parallel_for(order.size(), detail::resolve_threads(learn.threads, "auto_templates"), [&](std::size_t k) {
     auto [t, e] = template_from_shape(shapes[order[k]], opt, learn.fit);
