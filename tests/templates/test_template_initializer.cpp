@@ -112,8 +112,12 @@ void check_segmentation(const Mesh& mesh, const std::vector<int>& face_part) {
 TEST_CASE("segment_into_boxes separates seat, back and legs of a box chair (triangle_mesh and legacy_mesh)") {
   std::vector<int> face_part;
   const auto m = box_chair(face_part);
-  SUBCASE("triangle_mesh") { check_segmentation(m, face_part); }
-  SUBCASE("legacy_mesh") { check_segmentation(test::to_legacy(m), face_part); }
+  SUBCASE("triangle_mesh") {
+    check_segmentation(m, face_part);
+  }
+  SUBCASE("legacy_mesh") {
+    check_segmentation(test::to_legacy(m), face_part);
+  }
 }
 
 TEST_CASE("segment_into_boxes is deterministic and rejects bad parameters") {
