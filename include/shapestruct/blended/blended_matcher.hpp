@@ -210,13 +210,11 @@ class blended_matcher {
     out.selected = best;
     auto& chosen = out.blended[static_cast<std::size_t>(best)];
     if (chosen.map.points.empty()) {
-      // Re-blending at every vertex: keep the measures taken on the scored subset, which the selection used.
-      const blended_candidate<Scalar> scored = chosen;
+      // Re-blending at every vertex: keep the area score of the scored face subset, which the selection used
+      // (the sample measures do not change: the samples are blended alike in both passes).
+      const Scalar score = chosen.score;
       blend(a, b, out, chosen, false);
-      chosen.score = scored.score;
-      chosen.confidence_integral = scored.confidence_integral;
-      chosen.geodesic_distortion = scored.geodesic_distortion;
-      chosen.convexity_mismatch = scored.convexity_mismatch;
+      chosen.score = score;
     }
     out.map = chosen.map;
     stage("blending", t);
@@ -403,7 +401,7 @@ class blended_matcher {
     return best;
   }
 
-  /// Integrated confidence and geodesic distortion of a blended map (see blended_candidate).
+  /// Integrated confidence, geodesic distortion and convexity mismatch of a blended map (see blended_candidate).
   static void sample_measures(const blended_shape<double>& a, const blended_shape<double>& b,
                               const blended_match_result<double>& r, blended_candidate<double>& bc,
                               const std::vector<surface_point<double>>& pts) {
@@ -454,17 +452,17 @@ class blended_matcher {
     const auto& Cb = b.sample_convexity();
     double mismatch = 0;
     std::size_t mapped = 0;
+    // Both descriptors interpolated from their shape's samples (like the confidences), so that both sides are
+    // smoothed alike and a perfect map has no mismatch.
+    const auto interpolated = [](const blended_shape<double>& shape, const matrix_x<double>& C, index_t v) {
+      Eigen::RowVectorXd c = Eigen::RowVectorXd::Zero(C.cols());
+      for (index_t k = 0; k < shape.interpolation_index().cols(); ++k)
+        c += shape.interpolation_weight()(v, k) * C.row(shape.interpolation_index()(v, k));
+      return c;
+    };
     if (Ca.cols() > 0 && Ca.cols() == Cb.cols()) {
       for (index_t s = 0; s < ns; ++s) {
         if (image[static_cast<std::size_t>(s)] == no_index) continue;
-        // Both descriptors interpolated from their shape's samples (like the confidences), so that both sides
-        // are smoothed alike and a perfect map has no mismatch.
-        const auto interpolated = [](const blended_shape<double>& shape, const matrix_x<double>& C, index_t v) {
-          Eigen::RowVectorXd c = Eigen::RowVectorXd::Zero(C.cols());
-          for (index_t k = 0; k < shape.interpolation_index().cols(); ++k)
-            c += shape.interpolation_weight()(v, k) * C.row(shape.interpolation_index()(v, k));
-          return c;
-        };
         const Eigen::RowVectorXd ca = interpolated(a, Ca, samples[static_cast<std::size_t>(s)]);
         const Eigen::RowVectorXd cb = interpolated(b, Cb, image[static_cast<std::size_t>(s)]);
         mismatch += (ca - cb).cwiseAbs().mean();

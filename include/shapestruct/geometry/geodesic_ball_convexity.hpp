@@ -2,6 +2,7 @@
 // geodesic_ball_convexity: how far a point sticks out of (or sinks into) its geodesic neighbourhood, per scale.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <span>
 #include <vector>
@@ -52,22 +53,28 @@ template <class Scalar>
   if (volume < 0) normal = -normal;
   const index_t nr = static_cast<index_t>(radii.size());
   matrix_x<Scalar> out = matrix_x<Scalar>::Zero(ns, nr);
+  Scalar r_max = 0;
+  for (const Scalar r : radii) r_max = std::max(r_max, r);
   detail::parallel_for(ns, detail::resolve_threads(threads, "geodesic_ball_convexity"), [&](index_t s) {
     const index_t v0 = samples[static_cast<std::size_t>(s)];
-    for (index_t k = 0; k < nr; ++k) {
-      const Scalar r = radii[static_cast<std::size_t>(k)];
-      Eigen::Matrix<Scalar, 1, 3> centroid = Eigen::Matrix<Scalar, 1, 3>::Zero();
-      Eigen::Matrix<Scalar, 1, 3> n = Eigen::Matrix<Scalar, 1, 3>::Zero();
-      Scalar w = 0;
-      for (index_t v = 0; v < V.rows(); ++v) {
-        if (!(distances(v, s) <= r)) continue;
-        centroid += area[v] * V.row(v);
-        n += area[v] * normal.row(v);
-        w += area[v];
+    // One pass over the vertices for all radii: each vertex within the largest ball feeds every ball holding it.
+    matrix_x3<Scalar> centroid = matrix_x3<Scalar>::Zero(nr, 3);
+    matrix_x3<Scalar> n = matrix_x3<Scalar>::Zero(nr, 3);
+    vector_x<Scalar> w = vector_x<Scalar>::Zero(nr);
+    for (index_t v = 0; v < V.rows(); ++v) {
+      const Scalar d = distances(v, s);
+      if (!(d <= r_max)) continue;
+      for (index_t k = 0; k < nr; ++k) {
+        if (!(d <= radii[static_cast<std::size_t>(k)])) continue;
+        centroid.row(k) += area[v] * V.row(v);
+        n.row(k) += area[v] * normal.row(v);
+        w[k] += area[v];
       }
-      const Scalar len = n.norm();
-      if (!(w > 0) || !(len > 0)) continue;
-      out(s, k) = (n / len).dot(V.row(v0) - centroid / w) / r;
+    }
+    for (index_t k = 0; k < nr; ++k) {
+      const Scalar len = n.row(k).norm();
+      if (!(w[k] > 0) || !(len > 0)) continue;
+      out(s, k) = (n.row(k) / len).dot(V.row(v0) - centroid.row(k) / w[k]) / radii[static_cast<std::size_t>(k)];
     }
   });
   return out;
