@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "shapestruct/blended/blended_matcher.hpp"
+#include "shapestruct/eval/error_curve.hpp"
 #include "shapestruct/eval/geodesic_error.hpp"
 #include "shapestruct/io/bim_benchmark_files.hpp"
 #include "shapestruct/io/read_mesh.hpp"
@@ -354,10 +355,9 @@ int main(int argc, char** argv) {
   {
     std::vector<double> th;
     for (int k = 0; k <= 50; ++k) th.push_back(0.005 * k);
-    const auto c1 = error_curve(std::span<const double>(all_raw), std::span<const double>(th));
-    const auto c2 = error_curve(std::span<const double>(all_flip), std::span<const double>(th));
-    const auto c3 = error_curve(std::span<const double>(st_raw), std::span<const double>(th));
-    const auto c4 = error_curve(std::span<const double>(st_flip), std::span<const double>(th));
+    // A set where every pair failed, or without stored results, has no errors: its curve is all zeros.
+    auto curve = [&](const std::vector<double>& e) { return e.empty() ? std::vector<double>(th.size(), 0.0) : error_curve(e, th); };
+    const auto c1 = curve(all_raw), c2 = curve(all_flip), c3 = curve(st_raw), c4 = curve(st_flip);
     std::ofstream cd(fs::path(out_dir) / (set + "_curves.dat"));
     cd << "# D ours_raw ours_flip stored_raw stored_flip  (" << done << " pairs)\n";
     for (std::size_t k = 0; k < th.size(); ++k)

@@ -27,10 +27,6 @@ TEST_CASE("geodesic_errors: zero for the truth, the normalised Dijkstra distance
   const auto s = summarize_errors(std::span<const double>(e));
   CHECK(s.within_005 >= 0.5);
   CHECK(s.mean == doctest::Approx((e[2] + e[3]) / 4));
-  const std::vector<double> th = {0.0, 1.0};
-  const auto c = error_curve(std::span<const double>(e), std::span<const double>(th));
-  CHECK(c[0] == doctest::Approx(0.5));
-  CHECK(c[1] == doctest::Approx(1.0));
   CHECK_THROWS_AS((void)geodesic_errors(geo, std::span<const index_t>(pred), std::span<const index_t>(truth.data(), 2), norm),
                   invalid_input);
   CHECK_THROWS_AS((void)geodesic_errors(geo, std::span<const index_t>(pred), std::span<const index_t>(truth), 0.0),

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// geodesic_error: the BIM benchmark's correspondence error, geodesic distance / (2 sqrt(area)), and its curves.
+// geodesic_error: the BIM benchmark's correspondence error, geodesic distance / (2 sqrt(area)), and its summary
+// (curves: eval/error_curve.hpp).
 #pragma once
 
 #include <algorithm>
@@ -110,20 +111,6 @@ template <class Scalar>
   s.within_010 /= n;
   s.within_025 /= n;
   return s;
-}
-
-/// Fraction of errors <= D for each threshold D (the benchmark's accuracy curve). O(n log n + #thresholds).
-template <class Scalar>
-[[nodiscard]] std::vector<double> error_curve(std::span<const Scalar> errors, std::span<const double> thresholds) {
-  std::vector<Scalar> e(errors.begin(), errors.end());
-  std::sort(e.begin(), e.end());
-  std::vector<double> out;
-  out.reserve(thresholds.size());
-  for (double d : thresholds) {
-    const auto it = std::upper_bound(e.begin(), e.end(), static_cast<Scalar>(d));
-    out.push_back(e.empty() ? 0.0 : static_cast<double>(it - e.begin()) / static_cast<double>(e.size()));
-  }
-  return out;
 }
 
 }  // namespace shapestruct

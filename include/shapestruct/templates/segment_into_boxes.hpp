@@ -15,10 +15,10 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/core/types.hpp"
+#include "shapestruct/geometry/principal_frame.hpp"
 #include "shapestruct/templates/shape_samples.hpp"
 
 namespace shapestruct {
@@ -36,17 +36,9 @@ struct cell_box {
 inline cell_box fit_cell_box(const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 3>>& P,
                              const std::vector<index_t>& mem) {
   cell_box b;
-  Eigen::Vector3d mu = Eigen::Vector3d::Zero();
-  for (const auto i : mem) mu += P.row(i).transpose();
-  mu /= static_cast<double>(std::max<std::size_t>(mem.size(), 1));
-  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-  for (const auto i : mem) {
-    const Eigen::Vector3d d = P.row(i).transpose() - mu;
-    C += d * d.transpose();
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(C);
-  b.axes = es.eigenvectors().transpose();
-  if (b.axes.determinant() < 0) b.axes.row(0) *= -1;
+  const principal_frame frame = principal_frame_of(P, mem);
+  const Eigen::Vector3d& mu = frame.mean;
+  b.axes = frame.axes;
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const auto i : mem) {
     const Eigen::Vector3d l = b.axes * (P.row(i).transpose() - mu);

@@ -10,10 +10,10 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/detail/parallel_for.hpp"
+#include "shapestruct/geometry/principal_frame.hpp"
 #include "shapestruct/templates/part_template.hpp"
 #include "shapestruct/templates/segment_into_boxes.hpp"
 #include "shapestruct/templates/shape_samples.hpp"
@@ -66,24 +66,14 @@ inline std::pair<part_template, double> template_from_shape(const shape_samples&
     std::vector<index_t> mem;
     for (index_t i = 0; i < n; ++i)
       if (cell[static_cast<std::size_t>(i)] == k) mem.push_back(i);
-    Eigen::Vector3d mu = Eigen::Vector3d::Zero();
-    for (const auto i : mem) mu += s.points.row(i).transpose();
-    mu /= static_cast<double>(std::max<std::size_t>(mem.size(), 1));
-    Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-    for (const auto i : mem) {
-      const Eigen::Vector3d d = s.points.row(i).transpose() - mu;
-      C += d * d.transpose();
-    }
-    C /= static_cast<double>(std::max<std::size_t>(mem.size(), 1));
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(C);
-    Eigen::Matrix3d A = es.eigenvectors().transpose();  // rows = axes (ascending variance)
-    if (A.determinant() < 0) A.row(0) *= -1;            // keep a right-handed frame
+    const principal_frame frame = principal_frame_of(s.points, mem);
     part_box b;
     b.name = "part " + std::to_string(k);
     b.label = seg.cell_label[static_cast<std::size_t>(k)];
-    b.center = mu;
-    b.axes = A;
-    b.size = (12.0 * es.eigenvalues().cwiseMax(0.0)).cwiseSqrt().cwiseMax(0.01);
+    b.center = frame.mean;
+    b.axes = frame.axes;
+    // Side lengths of the box whose uniform distribution has the cell's variances (var = side^2 / 12).
+    b.size = (12.0 * frame.variances).cwiseSqrt().cwiseMax(0.01);
     b.sigma_center = Eigen::Vector3d::Constant(opt.init_sigma);
     b.sigma_size = Eigen::Vector3d::Constant(opt.init_sigma);
     t.parts.push_back(std::move(b));
