@@ -31,7 +31,8 @@ const char* usage_text =
     "                           PREFIX_source.ply coloured through the map\n"
     "  --samples N              even samples for confidence/consistency (default 256)\n"
     "  --features N             at most N AGD-maxima feature points per mesh (default 10)\n"
-    "  --max-maps N             cap on candidate conformal maps (default 10000)\n"
+    "  --max-maps N             candidate conformal maps kept, the most confident (default 10000)\n"
+    "  --max-enumerated N       cap on enumerated triplet maps before that, seeded random (default 30000)\n"
     "  --seed S                 seed of the candidate pruning (default 1)\n"
     "  --close-holes            fill boundary loops of up to 64 edges before matching (off by default)\n"
     "  --keep-largest           keep only the largest connected component (off by default)\n"
@@ -48,6 +49,7 @@ int run_match(const std::vector<std::string>& args) {
   o.shape.num_samples = r.integer({"--samples"}, 256);
   o.shape.max_features = r.integer({"--features"}, 10);
   const long long max_maps = r.integer({"--max-maps"}, 10000);
+  const long long max_enumerated = r.integer({"--max-enumerated"}, 30000);
   const long long seed = r.integer({"--seed"}, 1);
   o.shape.close_small_holes = r.flag("--close-holes");
   o.shape.keep_largest_component = r.flag("--keep-largest");
@@ -57,11 +59,13 @@ int run_match(const std::vector<std::string>& args) {
   if (pos.size() != 2) throw usage_error("need SRC and TGT meshes");
   if (out.empty()) throw usage_error("need -o OUT.map");
   if (max_maps < 1) throw usage_error("--max-maps must be >= 1");
+  if (max_enumerated < 1) throw usage_error("--max-enumerated must be >= 1");
+  o.max_maps = max_maps;
   if (o.threads < 0) throw usage_error("--threads must be >= 0");
   if (verbose)
     o.on_stage = [](const std::string& stage, double s) { std::fprintf(stderr, "  %-12s %8.3f s\n", stage.c_str(), s); };
   triplet_candidates cands;
-  cands.options.max_maps = max_maps;
+  cands.options.max_maps = max_enumerated;
   cands.options.seed = static_cast<std::uint64_t>(seed);
   const blended_matcher<> matcher(o, cands);
 

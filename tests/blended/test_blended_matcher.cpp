@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include <algorithm>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -207,4 +208,36 @@ TEST_CASE("blended_matcher rejects meshes that are not closed genus-0 manifolds,
     o.shape.num_samples = 1;
     CHECK_THROWS_AS((void)blended_matcher<>(o).match(good, good), invalid_input);
   }
+}
+
+TEST_CASE("blended_matcher keeps the max_maps most confident candidates, in enumeration order") {
+  const auto m = test::armed_sphere(4);
+  auto o = small_options();
+  o.max_maps = 0;  // all
+  const blended_matcher<> all(o);
+  const auto sm = all.prepare(m);
+  const auto full = all.match(sm, sm);
+  REQUIRE(full.candidates.size() > 40);
+  o.max_maps = 40;
+  const blended_matcher<> pruned(o);
+  const auto r = pruned.match(sm, sm);
+  REQUIRE(r.candidates.size() == 40);
+  REQUIRE(r.confidence.rows() == 40);
+  // The 40 largest integrated squared confidences of the full set, ties by index.
+  const vector_x<double> self = full.confidence.rowwise().squaredNorm();
+  std::vector<index_t> order(full.candidates.size());
+  std::iota(order.begin(), order.end(), index_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](index_t x, index_t y) { return self[x] > self[y]; });
+  order.resize(40);
+  std::sort(order.begin(), order.end());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const auto& want = full.candidates[static_cast<std::size_t>(order[k])];
+    CHECK(r.candidates[k].source == want.source);
+    CHECK(r.candidates[k].target == want.target);
+    CHECK(r.confidence.row(static_cast<index_t>(k)).isApprox(full.confidence.row(order[k])));
+  }
+  // The identity is among the most confident maps, so the pruned match still finds it.
+  std::vector<index_t> id(static_cast<std::size_t>(m.V.rows()));
+  std::iota(id.begin(), id.end(), index_t(0));
+  CHECK(mean_error(sm, r.map, id) < 0.01);
 }
