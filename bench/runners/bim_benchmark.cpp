@@ -193,8 +193,16 @@ int main(int argc, char** argv) {
         throw std::runtime_error("no dense ground truth: the meshes are not template-aligned (" +
                                  std::to_string(A.V.rows()) + " and " + std::to_string(B.V.rows()) + " vertices)");
       const auto t0 = std::chrono::steady_clock::now();
-      const auto sa = matcher.prepare(A);
-      const auto sb = matcher.prepare(B);
+      // Name the mesh a precondition failure is about (the library's message names the element only).
+      auto prepare = [&](const triangle_mesh<double>& M, const bim_mesh_ref& ref) {
+        try {
+          return matcher.prepare(M);
+        } catch (const invalid_input& e) {
+          throw std::runtime_error(ref.relative_path() + ": " + e.what());
+        }
+      };
+      const auto sa = prepare(A, pr.source);
+      const auto sb = prepare(B, pr.target);
       const double t_prep = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       const auto r = matcher.match(sa, sb);
       const double t_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
