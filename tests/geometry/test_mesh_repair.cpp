@@ -32,19 +32,6 @@ std::vector<index_t> faces_around(const triangle_mesh<double>& m, index_t v) {
   return out;
 }
 
-/// Every face with its own three vertices (as an STL file stores it).
-triangle_mesh<double> as_soup(const triangle_mesh<double>& m) {
-  triangle_mesh<double> out;
-  out.V.resize(3 * m.F.rows(), 3);
-  out.F.resize(m.F.rows(), 3);
-  for (index_t f = 0; f < m.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      out.V.row(3 * f + k) = m.V.row(m.F(f, k));
-      out.F(f, k) = 3 * f + k;
-    }
-  return out;
-}
-
 template <class Fn>
 void on_both_models(const triangle_mesh<double>& m, Fn&& fn) {
   {
@@ -203,7 +190,7 @@ TEST_CASE("remove_unreferenced_vertices: invalid input") {
 
 TEST_CASE("merge_duplicate_vertices welds a triangle soup back into a sphere") {
   const auto oct = test::octahedron();
-  auto soup = as_soup(oct);
+  auto soup = test::as_soup(oct);
   // one extra face whose corners 0 and 1 are both copies of octahedron vertex 0: it collapses
   soup.V.conservativeResize(soup.V.rows() + 3, 3);
   soup.V.bottomRows(3) << oct.V.row(0), oct.V.row(0), oct.V.row(2);

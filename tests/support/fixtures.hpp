@@ -11,6 +11,20 @@
 
 namespace shapestruct::test {
 
+/// Every face with its own three vertices (as an STL file or a polygon soup stores it): no shared edges.
+template <class Scalar>
+triangle_mesh<Scalar> as_soup(const triangle_mesh<Scalar>& m) {
+  triangle_mesh<Scalar> out;
+  out.V.resize(3 * m.F.rows(), 3);
+  out.F.resize(m.F.rows(), 3);
+  for (index_t f = 0; f < m.F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      out.V.row(3 * f + k) = m.V.row(m.F(f, k));
+      out.F(f, k) = 3 * f + k;
+    }
+  return out;
+}
+
 template <class Scalar = double>
 triangle_mesh<Scalar> tetrahedron() {
   triangle_mesh<Scalar> m;

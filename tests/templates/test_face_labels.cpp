@@ -9,6 +9,7 @@
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/core/triangle_mesh.hpp"
 #include "shapestruct/templates/face_labels.hpp"
+#include "support/fixtures.hpp"
 
 using namespace shapestruct;
 
@@ -115,14 +116,7 @@ TEST_CASE("project_labels_to_faces: the fuzzy cut moves a boundary the samples p
 
 TEST_CASE("project_labels_to_faces: a polygon soup (no shared edges) keeps the nearest-sample vote") {
   const auto m = strip(z_fold, 2.0, 20, 10);
-  triangle_mesh<double> soup;
-  soup.V.resize(3 * m.F.rows(), 3);
-  soup.F.resize(m.F.rows(), 3);
-  for (index_t f = 0; f < m.F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      soup.V.row(3 * f + k) = m.V.row(m.F(f, k));
-      soup.F(f, k) = 3 * f + k;
-    }
+  const auto soup = test::as_soup(m);
   const auto [s, labels] = samples_on(z_fold, 2.0, 0.05, 0.9);
   face_label_options vote_only;
   vote_only.smooth_manifold = false;

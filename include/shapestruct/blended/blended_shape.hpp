@@ -63,7 +63,7 @@ namespace detail {
 
 /// The automatic cut face of blended_shape (see blended_shape_options::cut_clearance): `largest` if all its
 /// corners are at least `clearance` from every feature (distance_to_features: #V x #features), else the largest
-/// face incident to the vertex of least AGD (ties: lowest index). Faces are compared by doubled area.
+/// face incident to the vertex of least AGD (ties: lowest index).
 template <class Scalar>
 index_t cut_face_away_from_features(const matrix_x3<Scalar>& V, const face_matrix& F, index_t largest,
                                     const matrix_x<Scalar>& distance_to_features, const vector_x<Scalar>& agd,
@@ -74,18 +74,14 @@ index_t cut_face_away_from_features(const matrix_x3<Scalar>& V, const face_matri
   if (clear) return largest;
   index_t center = 0;
   agd.minCoeff(&center);
+  const vector_x<Scalar> area = face_areas<Scalar>(V, F, validation_level::trust);
   index_t best = largest;
   Scalar best_area = -1;
-  for (index_t f = 0; f < F.rows(); ++f) {
-    if (F(f, 0) != center && F(f, 1) != center && F(f, 2) != center) continue;
-    const Eigen::Matrix<Scalar, 3, 1> e1 = (V.row(F(f, 1)) - V.row(F(f, 0))).transpose();
-    const Eigen::Matrix<Scalar, 3, 1> e2 = (V.row(F(f, 2)) - V.row(F(f, 0))).transpose();
-    const Scalar a = e1.cross(e2).norm();
-    if (a > best_area) {
-      best_area = a;
+  for (index_t f = 0; f < F.rows(); ++f)
+    if ((F(f, 0) == center || F(f, 1) == center || F(f, 2) == center) && area[f] > best_area) {
+      best_area = area[f];
       best = f;
     }
-  }
   return best;
 }
 

@@ -14,6 +14,7 @@
 #include "shapestruct/core/concepts/surface_mesh.hpp"
 #include "shapestruct/core/triangle_mesh.hpp"
 #include "shapestruct/core/validate.hpp"
+#include "shapestruct/geometry/mesh_measures.hpp"
 #include "shapestruct/knn/knn_index.hpp"
 #include "shapestruct/templates/alpha_expansion.hpp"
 #include "shapestruct/templates/shape_samples.hpp"
@@ -60,13 +61,7 @@ inline std::vector<potts_edge> fuzzy_cut_edges(const triangle_mesh<double>& m, d
   std::sort(half.begin(), half.end(), [](const half_edge& x, const half_edge& y) {
     return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
   });
-  Eigen::Matrix<double, Eigen::Dynamic, 3> N(nf, 3);
-  for (index_t f = 0; f < nf; ++f) {
-    const Eigen::Vector3d e1 = (m.V.row(m.F(f, 1)) - m.V.row(m.F(f, 0))).transpose();
-    const Eigen::Vector3d e2 = (m.V.row(m.F(f, 2)) - m.V.row(m.F(f, 0))).transpose();
-    const Eigen::Vector3d n = e1.cross(e2);
-    N.row(f) = n.norm() > 0 ? Eigen::RowVector3d((n / n.norm()).transpose()) : Eigen::RowVector3d::Zero();
-  }
+  const matrix_x3<double> N = face_normals<double>(m.V, m.F, validation_level::trust);  // zero on degenerate faces
   auto opposite = [&](index_t f, index_t a, index_t b) {
     for (int k = 0; k < 3; ++k)
       if (m.F(f, k) != a && m.F(f, k) != b) return m.F(f, k);
