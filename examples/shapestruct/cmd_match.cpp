@@ -32,8 +32,10 @@ const char* usage_text =
     "  --samples N              even samples for confidence/consistency (default 256)\n"
     "  --features N             at most N AGD-maxima feature points per mesh (default 10)\n"
     "  --max-maps N             candidate conformal maps kept, the most confident (default 10000)\n"
-    "  --max-enumerated N       cap on enumerated triplet maps before that, seeded random (default 30000)\n"
-    "  --seed S                 seed of the candidate pruning (default 1)\n"
+    "  --max-enumerated N       cap on enumerated triplet maps before that (default 30000)\n"
+    "  --pruning distances|random  how that cap prunes: keep the triplets that preserve feature-to-feature\n"
+    "                           geodesic distances best (default), or a seeded random choice (the chapter's)\n"
+    "  --seed S                 seed of the random pruning (default 1)\n"
     "  --close-holes            fill boundary loops of up to 64 edges before matching (off by default)\n"
     "  --keep-largest           keep only the largest connected component (off by default)\n"
     "  --threads T              worker threads, 0 = all cores (default 0)\n"
@@ -51,6 +53,7 @@ int run_match(const std::vector<std::string>& args) {
   const long long max_maps = r.integer({"--max-maps"}, 10000);
   const long long max_enumerated = r.integer({"--max-enumerated"}, 30000);
   const long long seed = r.integer({"--seed"}, 1);
+  const std::string pruning = r.option({"--pruning"}, "distances");
   o.shape.close_small_holes = r.flag("--close-holes");
   o.shape.keep_largest_component = r.flag("--keep-largest");
   o.threads = static_cast<int>(r.integer({"--threads"}, 0));
@@ -60,6 +63,7 @@ int run_match(const std::vector<std::string>& args) {
   if (out.empty()) throw usage_error("need -o OUT.map");
   if (max_maps < 1) throw usage_error("--max-maps must be >= 1");
   if (max_enumerated < 1) throw usage_error("--max-enumerated must be >= 1");
+  if (pruning != "distances" && pruning != "random") throw usage_error("--pruning must be distances or random");
   o.max_maps = max_maps;
   if (o.threads < 0) throw usage_error("--threads must be >= 0");
   if (verbose)
@@ -67,6 +71,7 @@ int run_match(const std::vector<std::string>& args) {
   triplet_candidates cands;
   cands.options.max_maps = max_enumerated;
   cands.options.seed = static_cast<std::uint64_t>(seed);
+  cands.options.pruning = pruning == "random" ? triplet_pruning::random : triplet_pruning::feature_distances;
   const blended_matcher<> matcher(o, cands);
 
   const auto A = read_mesh(std::filesystem::path(pos[0])).mesh;

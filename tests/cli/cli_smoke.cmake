@@ -52,3 +52,9 @@ run_cli(1 out inspect ${WORK}/broken.off)
 if(NOT out MATCHES "broken.off:5")
   message(FATAL_ERROR "inspect of a malformed OFF does not name file and line 5:\n${out}")
 endif()
+
+# match: a bad option value is a usage error (exit code 2) naming the option, before any mesh is read.
+run_cli(2 out match ${first_mesh} ${first_mesh} -o ${WORK}/self.map --pruning bogus)
+if(NOT out MATCHES "--pruning must be distances or random")
+  message(FATAL_ERROR "match --pruning bogus does not name the option:\n${out}")
+endif()
