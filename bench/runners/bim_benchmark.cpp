@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
   std::string set = "scape", out_dir = "bim_results";
   int limit = -1, stride = 1, offset = 0, threads = 0;
   bool diagnose_groups = false;
-  double eigenvalue_fraction = -1;
+  double eigenvalue_fraction = -1, feature_radius = -1;
   int max_eigenvectors = -1, max_groups = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -124,12 +124,13 @@ int main(int argc, char** argv) {
     else if (a == "--threads") threads = std::stoi(next());
     else if (a == "--groups") diagnose_groups = true;
     else if (a == "--eigenvalue-fraction") eigenvalue_fraction = std::stod(next());
+    else if (a == "--feature-radius") feature_radius = std::stod(next());
     else if (a == "--max-eigenvectors") max_eigenvectors = std::stoi(next());
     else if (a == "--max-groups") max_groups = std::stoi(next());
     else {
       std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec|humans|animals --out DIR [--limit N] [--stride K] "
                    "[--offset O] [--threads T] [--groups]\n"
-                   "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G]\n";
+                   "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G] [--feature-radius R]\n";
       return 2;
     }
   }
@@ -152,6 +153,7 @@ int main(int argc, char** argv) {
   // whether the selection picked the best group and what each group's measures were.
   options.full_maps_for_all_groups = diagnose_groups;
   if (eigenvalue_fraction >= 0) options.eigenvalue_fraction = eigenvalue_fraction;
+  if (feature_radius > 0) options.shape.feature_radius = feature_radius;
   if (max_eigenvectors > 0) options.max_eigenvectors = max_eigenvectors;
   if (max_groups > 0) options.max_groups = max_groups;
   const blended_matcher<> matcher(options);
