@@ -31,6 +31,7 @@ const char* usage_text =
     "                           PREFIX_source.ply coloured through the map\n"
     "  --samples N              even samples for confidence/consistency (default 256)\n"
     "  --features N             at most N AGD-maxima feature points per mesh (default 10)\n"
+    "  --feature-radius R       AGD maxima closer than R (units of sqrt(area)) are one feature (default 0.15)\n"
     "  --max-maps N             candidate conformal maps kept, the most confident (default 10000)\n"
     "  --max-enumerated N       cap on enumerated triplet maps before that (default 30000)\n"
     "  --pruning distances|random  how that cap prunes: keep the triplets that preserve feature-to-feature\n"
@@ -50,6 +51,7 @@ int run_match(const std::vector<std::string>& args) {
   blended_matcher_options o;
   o.shape.num_samples = r.integer({"--samples"}, 256);
   o.shape.max_features = r.integer({"--features"}, 10);
+  o.shape.feature_radius = r.real({"--feature-radius"}, o.shape.feature_radius);
   const long long max_maps = r.integer({"--max-maps"}, 10000);
   const long long max_enumerated = r.integer({"--max-enumerated"}, 30000);
   const long long seed = r.integer({"--seed"}, 1);
