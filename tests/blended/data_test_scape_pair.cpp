@@ -2,12 +2,11 @@
 // Blended intrinsic maps on one SCAPE benchmark pair (mesh000 -> mesh037), scored with the benchmark's protocol
 // against the dense ground truth. Skipped without $SHAPESTRUCT_DATA.
 #include <filesystem>
-#include <vector>
 
 #include <doctest/doctest.h>
 
+#include "dense_benchmark_error.hpp"
 #include "shapestruct/blended/blended_matcher.hpp"
-#include "shapestruct/eval/geodesic_error.hpp"
 #include "shapestruct/io/bim_benchmark_files.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "support/data_path.hpp"
@@ -27,15 +26,8 @@ TEST_CASE("blended_matcher on SCAPE mesh000 -> mesh037 beats the stored original
   CHECK(r.info == status::ok);
   // SCAPE's template has a pinched vertex (419): accepted, and every vertex is mapped.
   for (index_t v = 0; v < r.map.source_size(); ++v) REQUIRE(r.map.target_vertex(v) != no_index);
-  // The benchmark protocol: 1,024 geodesic FPS samples of the source, error d / (2 sqrt(area)).
-  const auto fps = geodesic_farthest_point_sampling(sa.geodesics(), 1024, 0);
-  std::vector<index_t> pred, truth;
-  for (index_t v : fps.indices) {
-    pred.push_back(r.map.target_vertex(v));
-    truth.push_back(v);
-  }
-  const auto e = geodesic_errors(sb.geodesics(), std::span<const index_t>(pred), std::span<const index_t>(truth), 2.0);
-  const auto s = summarize_errors(std::span<const double>(e));
+  // The benchmark protocol on the template-aligned meshes (truth: the same vertex).
+  const auto s = test::dense_identity_errors(sa, sb, r.map);
   MESSAGE("mesh000 -> mesh037: mean " << s.mean << ", within 0.25 " << s.within_025);
   // The original program's stored result for this pair (Results/Results_Corr_Scape): mean 0.0391.
   const auto res = scape.parent_path() / "Results/Results_Corr_Scape/BenchResult_BlendedMap_mesh000_to_mesh037.txt";

@@ -4,12 +4,11 @@
 // map was the front-to-back flip (mean error 0.26); pruning by feature-distance preservation keeps them.
 // Skipped without $SHAPESTRUCT_DATA.
 #include <filesystem>
-#include <vector>
 
 #include <doctest/doctest.h>
 
+#include "dense_benchmark_error.hpp"
 #include "shapestruct/blended/blended_matcher.hpp"
-#include "shapestruct/eval/geodesic_error.hpp"
 #include "shapestruct/io/bim_benchmark_files.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "support/data_path.hpp"
@@ -30,20 +29,8 @@ TEST_CASE("blended_matcher on TOSCA david6 -> david12 (pruned candidates) beats 
   REQUIRE(sa.features().size() * sb.features().size() >= 81);  // enough features for the pruning to act
   const auto r = matcher.match(sa, sb);
   CHECK(r.info == status::ok);
-  // The benchmark protocol: 1,024 geodesic FPS samples of the source; the meshes share their vertex numbering,
-  // so the truth is the identity. Error d / (2 sqrt(area)) on the unit-area target.
-  const auto fps = geodesic_farthest_point_sampling(sa.geodesics(), 1024, 0);
-  std::vector<index_t> pred, truth;
-  for (index_t v : fps.indices) {
-    const index_t source = sa.original_vertex(v);
-    if (source == no_index) continue;
-    const index_t image = r.map.target_vertex(source);
-    REQUIRE(image != no_index);
-    pred.push_back(sb.internal_vertex(image));
-    truth.push_back(sb.internal_vertex(source));
-  }
-  const auto e = geodesic_errors(sb.geodesics(), std::span<const index_t>(pred), std::span<const index_t>(truth), 2.0);
-  const auto s = summarize_errors(std::span<const double>(e));
+  // The meshes share their vertex numbering, so the truth is the identity.
+  const auto s = test::dense_identity_errors(sa, sb, r.map);
   MESSAGE("david6 -> david12: mean " << s.mean << ", within 0.25 " << s.within_025);
   // The original program's stored result for this pair: mean 0.0334.
   const auto res = tosca.parent_path() / "Results/Results_Corr_TOSCA/BenchResult_BlendedMap_david6_to_david12.txt";

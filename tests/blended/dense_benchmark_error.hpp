@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: MIT
+// The BIM benchmark's dense protocol for two meshes that share their vertex numbering (SCAPE, TOSCA within a
+// class), for the data-driven tests.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <doctest/doctest.h>
+
+#include "shapestruct/blended/blended_shape.hpp"
+#include "shapestruct/eval/geodesic_error.hpp"
+#include "shapestruct/geometry/farthest_point_sampling.hpp"
+#include "shapestruct/maps/surface_map.hpp"
+
+namespace shapestruct::test {
+
+/// Errors of `map` (input numbering) at 1,024 geodesic FPS samples of the source, against the truth "input vertex
+/// v goes to input vertex v", as d / (2 sqrt(area)) on the unit-area target. Requires every sample mapped.
+inline geodesic_error_summary dense_identity_errors(const blended_shape<double>& source,
+                                                    const blended_shape<double>& target, const surface_map<double>& map) {
+  const auto fps = geodesic_farthest_point_sampling(source.geodesics(), 1024, 0);
+  std::vector<index_t> pred, truth;
+  for (index_t v : fps.indices) {
+    const index_t input = source.original_vertex(v);
+    if (input == no_index) continue;  // a vertex added by a repair has no truth
+    const index_t image = map.target_vertex(input);
+    REQUIRE(image != no_index);
+    pred.push_back(target.internal_vertex(image));
+    truth.push_back(target.internal_vertex(input));
+  }
+  const auto e = geodesic_errors(target.geodesics(), std::span<const index_t>(pred), std::span<const index_t>(truth), 2.0);
+  return summarize_errors(std::span<const double>(e));
+}
+
+}  // namespace shapestruct::test
