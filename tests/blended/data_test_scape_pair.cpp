@@ -1,13 +1,10 @@
 // SPDX-License-Identifier: MIT
 // Blended intrinsic maps on one SCAPE benchmark pair (mesh000 -> mesh037), scored with the benchmark's protocol
 // against the dense ground truth. Skipped without $SHAPESTRUCT_DATA.
-#include <filesystem>
-
 #include <doctest/doctest.h>
 
 #include "dense_benchmark_error.hpp"
 #include "shapestruct/blended/blended_matcher.hpp"
-#include "shapestruct/io/bim_benchmark_files.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "support/data_path.hpp"
 #include "support/legacy_mesh.hpp"
@@ -29,10 +26,6 @@ TEST_CASE("blended_matcher on SCAPE mesh000 -> mesh037 beats the stored original
   // The benchmark protocol on the template-aligned meshes (truth: the same vertex).
   const auto s = test::dense_identity_errors(sa, sb, r.map);
   MESSAGE("mesh000 -> mesh037: mean " << s.mean << ", within 0.25 " << s.within_025);
-  // The original program's stored result for this pair (Results/Results_Corr_Scape): mean 0.0391.
-  const auto res = scape.parent_path() / "Results/Results_Corr_Scape/BenchResult_BlendedMap_mesh000_to_mesh037.txt";
-  double stored = 0.0391;
-  if (std::filesystem::exists(res)) stored = read_bim_result(res.string()).at("Stats").average;
-  CHECK(s.mean <= stored);
+  CHECK(s.mean <= test::stored_blended_map_mean(scape, "Results_Corr_Scape", "mesh000_to_mesh037", 0.0391));
   CHECK(s.within_025 >= 0.99);
 }

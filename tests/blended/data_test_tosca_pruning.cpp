@@ -1,15 +1,13 @@
 // SPDX-License-Identifier: MIT
 // Blended intrinsic maps on TOSCA david6 -> david12 with feature radius 0.1 (10 x 10 feature points: 86,400
-// triplet maps, pruned to 30,000 before the confidence stage). With random pruning the true triplets were mostly lost and the selected
-// map was the front-to-back flip (mean error 0.26); pruning by feature-distance preservation keeps them.
+// triplet maps, pruned to 30,000 before the confidence stage). With random pruning the true triplets were mostly
+// lost and the selected map was the front-to-back flip (mean error 0.26); pruning by feature-distance
+// preservation keeps them.
 // Skipped without $SHAPESTRUCT_DATA.
-#include <filesystem>
-
 #include <doctest/doctest.h>
 
 #include "dense_benchmark_error.hpp"
 #include "shapestruct/blended/blended_matcher.hpp"
-#include "shapestruct/io/bim_benchmark_files.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "support/data_path.hpp"
 
@@ -32,10 +30,6 @@ TEST_CASE("blended_matcher on TOSCA david6 -> david12 (pruned candidates) beats 
   // The meshes share their vertex numbering, so the truth is the identity.
   const auto s = test::dense_identity_errors(sa, sb, r.map);
   MESSAGE("david6 -> david12: mean " << s.mean << ", within 0.25 " << s.within_025);
-  // The original program's stored result for this pair: mean 0.0334.
-  const auto res = tosca.parent_path() / "Results/Results_Corr_TOSCA/BenchResult_BlendedMap_david6_to_david12.txt";
-  double stored = 0.0334;
-  if (std::filesystem::exists(res)) stored = read_bim_result(res.string()).at("Stats").average;
-  CHECK(s.mean <= stored);
+  CHECK(s.mean <= test::stored_blended_map_mean(tosca, "Results_Corr_TOSCA", "david6_to_david12", 0.0334));
   CHECK(s.within_025 >= 0.99);
 }

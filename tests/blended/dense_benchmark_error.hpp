@@ -3,13 +3,16 @@
 // class), for the data-driven tests.
 #pragma once
 
+#include <filesystem>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <doctest/doctest.h>
 
 #include "shapestruct/blended/blended_shape.hpp"
 #include "shapestruct/eval/geodesic_error.hpp"
+#include "shapestruct/io/bim_benchmark_files.hpp"
 #include "shapestruct/geometry/farthest_point_sampling.hpp"
 #include "shapestruct/maps/surface_map.hpp"
 
@@ -31,6 +34,14 @@ inline geodesic_error_summary dense_identity_errors(const blended_shape<double>&
   }
   const auto e = geodesic_errors(target.geodesics(), std::span<const index_t>(pred), std::span<const index_t>(truth), 2.0);
   return summarize_errors(std::span<const double>(e));
+}
+
+/// The original program's stored mean error for a pair (`Results/<results>/BenchResult_BlendedMap_<pair>.txt`
+/// beside the data set `set`), or `fallback` (the value read when the test was written) if the file is absent.
+inline double stored_blended_map_mean(const std::filesystem::path& set, const std::string& results, const std::string& pair,
+                                      double fallback) {
+  const auto file = set.parent_path() / "Results" / results / ("BenchResult_BlendedMap_" + pair + ".txt");
+  return std::filesystem::exists(file) ? read_bim_result(file.string()).at("Stats").average : fallback;
 }
 
 }  // namespace shapestruct::test
