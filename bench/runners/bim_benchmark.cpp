@@ -105,6 +105,7 @@ int main(int argc, char** argv) {
   int limit = -1, stride = 1, offset = 0, threads = 0;
   bool diagnose_groups = false;
   double eigenvalue_fraction = -1, feature_radius = -1;
+  std::string selection = "rank-sum";
   int max_eigenvectors = -1, max_groups = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -125,12 +126,14 @@ int main(int argc, char** argv) {
     else if (a == "--groups") diagnose_groups = true;
     else if (a == "--eigenvalue-fraction") eigenvalue_fraction = std::stod(next());
     else if (a == "--feature-radius") feature_radius = std::stod(next());
+    else if (a == "--selection") selection = next();
     else if (a == "--max-eigenvectors") max_eigenvectors = std::stoi(next());
     else if (a == "--max-groups") max_groups = std::stoi(next());
     else {
       std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec|humans|animals --out DIR [--limit N] [--stride K] "
                    "[--offset O] [--threads T] [--groups]\n"
-                   "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G] [--feature-radius R]\n";
+                   "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G] [--feature-radius R]\n"
+                   "  [--selection rank-sum|area|confidence]\n";
       return 2;
     }
   }
@@ -154,6 +157,12 @@ int main(int argc, char** argv) {
   options.full_maps_for_all_groups = diagnose_groups;
   if (eigenvalue_fraction >= 0) options.eigenvalue_fraction = eigenvalue_fraction;
   if (feature_radius > 0) options.shape.feature_radius = feature_radius;
+  if (selection == "area") options.selection = blended_selection::area_score;
+  else if (selection == "confidence") options.selection = blended_selection::integrated_confidence;
+  else if (selection != "rank-sum") {
+    std::cerr << "--selection must be rank-sum, area or confidence\n";
+    return 2;
+  }
   if (max_eigenvectors > 0) options.max_eigenvectors = max_eigenvectors;
   if (max_groups > 0) options.max_groups = max_groups;
   const blended_matcher<> matcher(options);

@@ -117,6 +117,24 @@ TEST_CASE("blended_matcher keeps every candidate blended map with its score and 
   CHECK(r.confidence.maxCoeff() <= 1);
 }
 
+TEST_CASE("blended_matcher selects by the chosen rule: area score, integrated confidence, or their rank sum") {
+  const auto m = test::front_back_creature(3);  // its intrinsic flip forms a second group
+  auto o = small_options();
+  const auto sm = blended_matcher<>(o).prepare(m);
+  for (const auto rule : {blended_selection::area_score, blended_selection::integrated_confidence,
+                          blended_selection::area_and_confidence_rank}) {
+    o.selection = rule;
+    const auto r = blended_matcher<>(o).match(sm, sm);
+    REQUIRE(r.blended.size() >= 2);  // several groups, so the rules have something to choose between
+    const auto& chosen = r.blended[static_cast<std::size_t>(r.selected)];
+    for (const auto& b : r.blended) {
+      if (rule == blended_selection::area_score) CHECK(b.selection_score <= chosen.selection_score);
+      if (rule == blended_selection::integrated_confidence) CHECK(b.confidence_integral <= chosen.confidence_integral);
+      CHECK(b.selection_rank >= chosen.selection_rank);
+    }
+  }
+}
+
 TEST_CASE("blended_matcher tells a map from its intrinsic flip by convexity (dome vs dimple)") {
   // Front and back are isometric, so the true map and the front-to-back flip preserve area equally well; the
   // convexity mismatch (a dome must map to a dome) picks the true one.

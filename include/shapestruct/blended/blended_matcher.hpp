@@ -37,6 +37,8 @@ enum class blended_selection {
   /// against area_score: 67 cross-set human pairs mean error 0.1037 -> 0.1006 (13 -> 12 flips), every 2nd
   /// pair 0.0915 -> 0.0849 (8 -> 7), 14 SCAPE pairs unchanged (0.0374), TOSCA michael3->michael1 0.269 -> 0.023.
   area_and_confidence_rank,
+  /// The highest integrated confidence alone (the chapter's rule, ch. 3.3.5; ties: higher area score).
+  integrated_confidence,
 };
 
 /// Options of blended_matcher (dissertation ch. 3 defaults).
@@ -98,7 +100,8 @@ struct blended_candidate {
   /// The selection's area term: score - blended_matcher_options::convexity_weight * convexity_mismatch.
   Scalar selection_score = 0;
   /// Rank sum used by blended_selection::area_and_confidence_rank (0 = best on both); the selected map has the
-  /// smallest. With blended_selection::area_score it is the rank by selection_score alone.
+  /// smallest. With blended_selection::area_score it is the rank by selection_score alone, with
+  /// blended_selection::integrated_confidence the rank by confidence_integral alone.
   index_t selection_rank = 0;
   /// The blended map (source vertices -> target surface points); empty for unselected groups unless
   /// blended_matcher_options::full_maps_for_all_groups (blended_matcher::blend_group rebuilds it).
@@ -411,10 +414,11 @@ class blended_matcher {
       for (index_t r = 0; r < n; ++r) maps[static_cast<std::size_t>(order[static_cast<std::size_t>(r)])].selection_rank += r;
     };
     for (auto& m : maps) m.selection_rank = 0;
-    rank_by([&](index_t x, index_t y) {
-      return maps[static_cast<std::size_t>(x)].selection_score > maps[static_cast<std::size_t>(y)].selection_score;
-    });
-    if (options_.selection == blended_selection::area_and_confidence_rank)
+    if (options_.selection != blended_selection::integrated_confidence)
+      rank_by([&](index_t x, index_t y) {
+        return maps[static_cast<std::size_t>(x)].selection_score > maps[static_cast<std::size_t>(y)].selection_score;
+      });
+    if (options_.selection != blended_selection::area_score)
       rank_by([&](index_t x, index_t y) {
         return maps[static_cast<std::size_t>(x)].confidence_integral > maps[static_cast<std::size_t>(y)].confidence_integral;
       });
