@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
   int limit = -1, stride = 1, offset = 0, threads = 0;
   bool diagnose_groups = false;
   double eigenvalue_fraction = -1, feature_radius = -1;
-  std::string selection = "rank-sum";
+  std::string selection;  // empty: the library default (blended_matcher_options::selection)
   int max_eigenvectors = -1, max_groups = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -133,7 +133,7 @@ int main(int argc, char** argv) {
       std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec|humans|animals --out DIR [--limit N] [--stride K] "
                    "[--offset O] [--threads T] [--groups]\n"
                    "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G] [--feature-radius R]\n"
-                   "  [--selection rank-sum|area|confidence]\n";
+                   "  [--selection rank-sum|area|confidence] (default: the library's, confidence)\n";
       return 2;
     }
   }
@@ -159,7 +159,8 @@ int main(int argc, char** argv) {
   if (feature_radius > 0) options.shape.feature_radius = feature_radius;
   if (selection == "area") options.selection = blended_selection::area_score;
   else if (selection == "confidence") options.selection = blended_selection::integrated_confidence;
-  else if (selection != "rank-sum") {
+  else if (selection == "rank-sum") options.selection = blended_selection::area_and_confidence_rank;
+  else if (!selection.empty()) {
     std::cerr << "--selection must be rank-sum, area or confidence\n";
     return 2;
   }
