@@ -113,3 +113,18 @@ TEST_CASE("part_template bad input: no parts, inconsistent dimensions, bad numbe
   CHECK_THROWS_AS(template_from_json(parse_json(R"({"parts": [{"size": [1, 1, 1]}]})")), io_error);
   CHECK_THROWS_AS(template_from_json(parse_json(R"([1, 2])")), io_error);
 }
+
+TEST_CASE("part_template JSON: axes written to four decimals are snapped, axes far from orthonormal are rejected") {
+  // A box turned 45 degrees about the up axis, as a user types it.
+  const auto t = template_from_json(parse_json(
+      R"({"parts": [{"center": [0, 0, 0], "size": [1, 1, 1],
+                     "axes": [[0.7071, 0, 0.7071], [0, 1, 0], [-0.7071, 0, 0.7071]]}]})"));
+  const Eigen::Matrix3d& a = t.parts[0].axes;
+  CHECK((a * a.transpose()).isIdentity(1e-12));
+  CHECK(a(0, 0) == doctest::Approx(std::sqrt(0.5)).epsilon(1e-9));
+  CHECK(a(2, 0) == doctest::Approx(-std::sqrt(0.5)).epsilon(1e-9));
+  CHECK_THROWS_AS(template_from_json(parse_json(
+                      R"({"parts": [{"center": [0, 0, 0], "size": [1, 1, 1],
+                                     "axes": [[0.8, 0, 0.7], [0, 1, 0], [-0.7, 0, 0.7]]}]})")),
+                  invalid_input);
+}

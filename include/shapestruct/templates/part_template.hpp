@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/SVD>
 
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/core/types.hpp"
@@ -143,7 +144,8 @@ inline json_value template_to_json(const part_template& t) {
 }
 
 /// Builds a template from its JSON object. Optional keys take part_box's defaults ("axes" identity, sigmas 0.05,
-/// no features, "label" = part index, "must_exist" false); "center" and "size" are required. The result is
+/// no features, "label" = part index, "must_exist" false); "center" and "size" are required. "axes" rows within
+/// 1e-3 of orthonormal (a few written decimals) are snapped to the nearest orthonormal matrix. The result is
 /// validated (validate_template), so a template with no parts or inconsistent dimensions is rejected.
 /// \throws io_error bad_value naming `path` and the offending key; invalid_input from validate_template.
 inline part_template template_from_json(const json_value& v, const std::string& path = {}) {
@@ -190,6 +192,14 @@ inline part_template template_from_json(const json_value& v, const std::string& 
         b.axes.row(r) = detail::json_to_vec(a->as_array()[static_cast<std::size_t>(r)], where + ": \"axes\" row", 3,
                                             path)
                             .transpose();
+      // Hand-written axes carry a few decimals ([0.7071, 0, 0.7071]): snap rows within 1e-3 of orthonormal to
+      // the nearest orthonormal matrix (polar factor U V^T); anything further off is left for validate_template
+      // to reject. Axes that are orthonormal to rounding are kept bit for bit, so write/read round-trips exactly.
+      const Eigen::Matrix3d gram = b.axes * b.axes.transpose();
+      if (gram.isIdentity(1e-3) && !gram.isIdentity(1e-12)) {
+        const Eigen::JacobiSVD<Eigen::Matrix3d> svd(b.axes, Eigen::ComputeFullU | Eigen::ComputeFullV);
+        b.axes = svd.matrixU() * svd.matrixV().transpose();
+      }
     }
     if (const auto* x = p.find("sigma_center")) b.sigma_center = detail::json_to_vec(*x, where + ": \"sigma_center\"", 3, path);
     if (const auto* x = p.find("sigma_size")) b.sigma_size = detail::json_to_vec(*x, where + ": \"sigma_size\"", 3, path);
