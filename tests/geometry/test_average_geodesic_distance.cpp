@@ -25,7 +25,7 @@ TEST_CASE("AGD with every vertex as a source is the area-weighted mean distance 
   }
 }
 
-TEST_CASE("AGD from 64 FPS sources approximates the exact AGD; identical for 1 and 2 threads; legacy mesh agrees") {
+TEST_CASE("AGD from 64 FPS sources approximates the exact AGD, identical for 1 and 2 threads, legacy mesh agrees") {
   const auto m = test::elongated_ellipsoid(3, 3.0);
   const auto legacy = test::to_legacy(m);
   const auto exact = average_geodesic_distance(m.V, m.F, {.num_sources = m.V.rows()});
@@ -65,7 +65,7 @@ TEST_CASE("AGD maxima on an elongated ellipsoid are at its two ends, on both mes
   CHECK(one[0] == maxima[0]);
 }
 
-TEST_CASE("agd_local_maxima: a plateau gives one maximum; non-finite values are skipped") {
+TEST_CASE("agd_local_maxima: a plateau gives one maximum, non-finite values are skipped") {
   const auto grid = test::grid_mesh(6, 6);
   Eigen::VectorXd f = Eigen::VectorXd::Constant(grid.V.rows(), 2.0);
   const auto one = agd_local_maxima(grid.V, grid.F, f, 100.0);

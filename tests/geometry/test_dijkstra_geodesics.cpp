@@ -76,7 +76,7 @@ TEST_CASE("Dijkstra equals Bellman-Ford on random jittered meshes, single and mu
   }
 }
 
-TEST_CASE("distance_table: columns equal single-source runs; identical for 1, 2 and 0 threads") {
+TEST_CASE("distance_table: columns equal single-source runs, identical for 1, 2 and 0 threads") {
   const auto m = test::jittered_icosphere(3, 5);
   const auto legacy = test::to_legacy(m);
   const dijkstra_geodesics<double> geo(m);

@@ -52,7 +52,7 @@ TEST_CASE("edge graph: CSR rows sorted, each edge listed from both ends with its
   CHECK(E == g.edges);
 }
 
-TEST_CASE("edge graph: unreferenced vertices have degree 0; faces sharing an edge twice merge it") {
+TEST_CASE("edge graph: unreferenced vertices have degree 0, faces sharing an edge twice merge it") {
   auto m = test::octahedron();
   m.V.conservativeResize(7, 3);
   m.V.row(6) << 5, 5, 5;

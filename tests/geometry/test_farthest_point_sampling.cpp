@@ -78,7 +78,7 @@ TEST_CASE("geodesic FPS: properties hold and the incremental field equals full D
   }
 }
 
-TEST_CASE("FPS: count 0 gives nothing; count = #P picks everything with final radius 0") {
+TEST_CASE("FPS: count 0 gives nothing, count = #P picks everything with final radius 0") {
   const auto oct = test::octahedron();
   CHECK(farthest_point_sampling(oct.V, 0).indices.empty());
   const auto all = geodesic_farthest_point_sampling(oct, 6, 2);

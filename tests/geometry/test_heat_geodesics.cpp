@@ -62,7 +62,7 @@ TEST_CASE("heat geodesics vs exact great-circle distance on a fine icosphere: cl
   CHECK(H.distances(antipode, 0) == doctest::Approx(std::acos(-1.0)).epsilon(0.02));
 }
 
-TEST_CASE("heat geodesics: table equals single queries; identical for 1 and 2 threads; legacy mesh agrees") {
+TEST_CASE("heat geodesics: table equals single queries, identical for 1 and 2 threads, legacy mesh agrees") {
   const auto m = test::jittered_icosphere(3, 21, 0.02);
   const auto legacy = test::to_legacy(m);
   const heat_geodesic_solver<double> heat(m);

@@ -62,7 +62,7 @@ TEST_CASE("local_shape_features: on a plane the normal is the plane normal and p
   CHECK(checked > 1000);
 }
 
-TEST_CASE("local_shape_features: on a line linearity is 1 and v1 is the line direction; angle features") {
+TEST_CASE("local_shape_features: on a line linearity is 1 and v1 is the line direction, angle features") {
   const Eigen::Vector3d dir = Eigen::Vector3d(1, 0, 0);
   matrix_x3<double> P(500, 3);
   for (index_t i = 0; i < P.rows(); ++i) P.row(i) = (Eigen::Vector3d(0, 2, 1) + dir * (i / 100.0)).transpose();

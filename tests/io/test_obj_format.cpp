@@ -62,7 +62,7 @@ TEST_CASE("read_obj: polygon soup with a concave hexagon") {
   CHECK(area == doctest::Approx(3.0));
 }
 
-TEST_CASE("read_obj errors: syntax, bad_index, bad_value with lines; cannot_open") {
+TEST_CASE("read_obj errors: syntax, bad_index, bad_value with lines, cannot_open") {
   auto e = require_io_error([] { (void)read_obj("v 0 0 0\nv 1 x 0\n", "s.obj"); }, file_error::syntax);
   CHECK(e.line() == 2);
   e = require_io_error([] { (void)read_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 a\n", "s.obj"); }, file_error::syntax);

@@ -28,7 +28,7 @@ std::string binary_stl(const std::vector<std::array<float, 9>>& tris, const std:
 }
 }  // namespace
 
-TEST_CASE("read_stl: binary detected by size even when the header starts with 'solid'; corners welded") {
+TEST_CASE("read_stl: binary detected by size even when the header starts with 'solid', corners welded") {
   const std::string bytes = binary_stl({{0, 0, 0, 1, 0, 0, 0, 1, 0}, {1, 0, 0, 1, 1, 0, 0, 1, 0}, {-0.0f, 0, 0, 0, 1, 0, 1, 0, 0}},
                                        "solid looks like ascii but is binary");
   const auto m = read_stl(bytes, "b.stl");

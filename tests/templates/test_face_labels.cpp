@@ -124,7 +124,7 @@ TEST_CASE("project_labels_to_faces: a polygon soup (no shared edges) keeps the n
   CHECK(project_labels_to_faces(soup, s, labels) == project_labels_to_faces(m, s, labels, vote_only));
 }
 
-TEST_CASE("project_labels_to_faces: null labels do not vote; bad input is a typed error") {
+TEST_CASE("project_labels_to_faces: null labels do not vote, bad input is a typed error") {
   const auto m = strip(z_fold, 2.0, 10, 5);
   auto [s, labels] = samples_on(z_fold, 2.0, 0.1, 0.9);
   for (std::size_t i = 0; i < labels.size(); ++i)

@@ -122,7 +122,7 @@ TEST_CASE("make_shape_samples bad input") {
   CHECK_THROWS_AS(make_shape_samples(test::octahedron<double>(), {.points = 1}), invalid_input);
 }
 
-TEST_CASE("learn_templates moves the template towards the collection; initializer builds valid templates") {
+TEST_CASE("learn_templates moves the template towards the collection, initializer builds valid templates") {
   const assembly_generator<double> gen(assembly_kind::chair, 11);
   std::vector<shape_samples> shapes;
   for (int i = 0; i < 8; ++i) shapes.push_back(make_shape_samples(gen.generate(static_cast<std::uint64_t>(i)).mesh, {.points = 500}));
