@@ -38,12 +38,48 @@ struct template_initializer_options {
   double merge_tolerance = 0.03;
 };
 
+namespace detail {
+
+/// Gives congruent boxes of a template (same upright extents, congruent_boxes) one output label, then numbers the
+/// labels 0, 1, ... by first appearance. segment_into_boxes groups congruent CELLS, but a cell can carry a strip of
+/// the seat or a stretcher, so one leg of four may miss its group; the refitted boxes have shed those strips.
+inline void share_labels_of_congruent_boxes(part_template& t) {
+  const std::size_t B = t.parts.size();
+  std::vector<std::size_t> root(B);
+  std::iota(root.begin(), root.end(), std::size_t{0});
+  const auto find = [&](std::size_t x) {
+    while (root[x] != x) x = root[x] = root[root[x]];
+    return x;
+  };
+  std::vector<Eigen::Vector3d> ext(B);
+  for (std::size_t b = 0; b < B; ++b) {
+    cell_box box;
+    box.axes = t.parts[b].axes;
+    box.size = t.parts[b].size;
+    ext[b] = upright_extents(box, t.up_axis);
+  }
+  // Boxes that already share a label stay together; congruent boxes join them.
+  for (std::size_t a = 0; a < B; ++a)
+    for (std::size_t b = a + 1; b < B; ++b)
+      if (t.parts[a].label == t.parts[b].label || congruent_boxes(ext[a], ext[b])) root[find(b)] = find(a);
+  std::vector<index_t> label_of_root(B, no_index);
+  index_t next = 0;
+  for (std::size_t b = 0; b < B; ++b) {
+    auto& l = label_of_root[find(b)];
+    if (l == no_index) l = next++;
+    t.parts[b].label = l;
+  }
+}
+
+}  // namespace detail
+
 /// A candidate template from one shape (5.3.4): a segmentation into N_seg cells (segment_into_boxes: with
 /// opt.oversegment > N_seg, cells grown along the neighbourhood graph and merged by box-abstraction error; else
 /// the chapter's Voronoi cells of N_seg farthest points), one box per cell oriented along the cell's PCA axes with
 /// side lengths sqrt(12) standard deviations (the extent of a uniform distribution with that spread; the chapter
 /// says "one standard deviation"), then the fitter re-labels the shape with E_data + E_smooth only (loose
-/// deformation prior) and the fitted boxes become the template. Returns the template and its fitting energy.
+/// deformation prior) and the fitted boxes become the template; fitted boxes that are congruent (copies of one
+/// part, as four legs) share an output label. Returns the template and its fitting energy.
 /// \throws invalid_input empty (fewer samples than parts), bad_parameter (parts < 1), validate_samples'.
 inline std::pair<part_template, double> template_from_shape(const shape_samples& s,
                                                             const template_initializer_options& opt = {},
@@ -88,6 +124,7 @@ inline std::pair<part_template, double> template_from_shape(const shape_samples&
     t.parts[b].center = fit.centers[b];
     t.parts[b].size = fit.sizes[b].cwiseMax(0.01);
   }
+  detail::share_labels_of_congruent_boxes(t);
   return {t, fit.energy};
 }
 
