@@ -155,11 +155,13 @@ TEST_CASE("congruent fitted boxes share an output label, different parts keep th
   add({-0.18, -0.2, -0.18}, {0.03, 0.3, 0.03}, 2);
   add({0.18, -0.2, -0.18}, {0.045, 0.28, 0.04}, 3);  // a fourth whose cell also held a strip of the seat
   add({0.2, 0.1, 0}, {0.04, 0.04, 0.3}, 4);          // an arm: horizontal, not a copy of a leg
+  add({0, 0.45, -0.2}, {0.03, 0.3, 0.03}, 5);        // a finial on the back: a leg's extents, not its height
   detail::share_labels_of_congruent_boxes(t);
   CHECK(t.parts[0].label == 0);
   CHECK(t.parts[1].label == 1);
   for (std::size_t b = 2; b < 6; ++b) CHECK(t.parts[b].label == 2);
   CHECK(t.parts[6].label == 3);  // labels stay numbered 0, 1, ... by first appearance
+  CHECK(t.parts[7].label == 4);
   // A leg turned a quarter turn about the up axis is still a copy (upright extents do not depend on it).
   t.parts[5].axes = Eigen::AngleAxisd(0.5 * 3.14159265358979, Eigen::Vector3d::UnitY()).toRotationMatrix();
   t.parts[5].label = 7;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -40,9 +41,11 @@ struct template_initializer_options {
 
 namespace detail {
 
-/// Gives congruent boxes of a template (same upright extents, congruent_boxes) one output label, then numbers the
-/// labels 0, 1, ... by first appearance. segment_into_boxes groups congruent CELLS, but a cell can carry a strip of
-/// the seat or a stretcher, so one leg of four may miss its group; the refitted boxes have shed those strips.
+/// Gives copies of one part in a template one output label, then numbers the labels 0, 1, ... by first
+/// appearance. Copies are boxes with the same upright extents (congruent_boxes) at the same height: the legs of a
+/// chair, its two arms; an arm and a leg of a figure may have the same extents but not the same height.
+/// segment_into_boxes groups congruent CELLS, but a cell can carry a strip of the seat or a stretcher, so one leg
+/// of four may miss its group; the refitted boxes have shed those strips.
 inline void share_labels_of_congruent_boxes(part_template& t) {
   const std::size_t B = t.parts.size();
   std::vector<std::size_t> root(B);
@@ -61,7 +64,11 @@ inline void share_labels_of_congruent_boxes(part_template& t) {
   // Boxes that already share a label stay together; congruent boxes join them.
   for (std::size_t a = 0; a < B; ++a)
     for (std::size_t b = a + 1; b < B; ++b)
-      if (t.parts[a].label == t.parts[b].label || congruent_boxes(ext[a], ext[b])) root[find(b)] = find(a);
+      if (t.parts[a].label == t.parts[b].label ||
+          (congruent_boxes(ext[a], ext[b]) &&
+           std::abs(t.parts[a].center[t.up_axis] - t.parts[b].center[t.up_axis]) <=
+               0.3 * std::max(ext[a][0], ext[b][0]) + 0.02))
+        root[find(b)] = find(a);
   std::vector<index_t> label_of_root(B, no_index);
   index_t next = 0;
   for (std::size_t b = 0; b < B; ++b) {
