@@ -34,7 +34,7 @@ namespace fs = std::filesystem;
 using namespace shapestruct;
 
 namespace {
-std::string argv_list(const std::set<std::string>& ids) {
+std::string comma_joined(const std::set<std::string>& ids) {
   std::string r;
   for (const auto& id : ids) r += (r.empty() ? "" : ",") + id;
   return r;
@@ -170,7 +170,7 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < files.size(); ++i)
       if (!report_without.count(files[i].stem().string())) kept.push_back(scored[i]);
     if (!kept.empty())
-      std::cout << "accuracy without shapes " << argv_list(report_without) << " (" << kept.size()
+      std::cout << "accuracy without shapes " << comma_joined(report_without) << " (" << kept.size()
                 << " shapes, one mapping chosen over them): " << 100.0 * labeling_accuracy(kept).accuracy << " %\n";
   }
   std::cout << "secondary: accuracy with a mapping per shape: " << 100.0 * per_shape_mapping << " %\n";
