@@ -22,6 +22,7 @@ int run_templates(const std::vector<std::string>& args) {
   const long long subset = reader.integer({"--learn-subset"}, 200);
   const long long up = reader.integer({"--up"}, 1);
   const long long parts = reader.integer({"--parts"}, 4);
+  const long long learn_best = reader.integer({"--learn-best"}, 2);
   const bool no_learn = reader.flag("--no-learn");
   const bool no_ply = reader.flag("--no-ply");
   const bool no_points = reader.flag("--no-points");
@@ -29,8 +30,9 @@ int run_templates(const std::vector<std::string>& args) {
   const auto pos = reader.positionals();
   if (pos.size() != 1) throw cli::usage_error("expected one input folder DIR");
   if (out.empty()) throw cli::usage_error("-o OUT is required");
-  if (threads < 0 || points < 16 || subset < 1 || up < 0 || up > 2 || parts < 1)
-    throw cli::usage_error("--threads >= 0, --points >= 16, --learn-subset >= 1, --up 0|1|2, --parts >= 1");
+  if (threads < 0 || points < 16 || subset < 1 || up < 0 || up > 2 || parts < 1 || learn_best < 1)
+    throw cli::usage_error(
+        "--threads >= 0, --points >= 16, --learn-subset >= 1, --up 0|1|2, --parts >= 1, --learn-best >= 1");
   std::vector<part_template> templates;
   if (!tpl.empty()) templates = read_templates(tpl);
   const auto files = list_shape_files(pos[0]);
@@ -42,6 +44,7 @@ int run_templates(const std::vector<std::string>& args) {
   opt.sampling.up_axis = static_cast<int>(up);
   opt.init.up_axis = static_cast<int>(up);
   opt.init.parts = static_cast<int>(parts);
+  opt.init.learn_best = static_cast<int>(learn_best);
   opt.learn_subset = static_cast<std::size_t>(subset);
   opt.run_learning = !no_learn;
   opt.write_ply = !no_ply;
@@ -87,7 +90,8 @@ const cli::register_command reg{
     "templates",
     {"learn part-based templates; segment, correspond and co-align a folder of shapes (chapter 5)",
      "usage: shapestruct templates DIR -o OUT [--template T.json] [--threads N] [--points P] [--learn-subset S]\n"
-     "                            [--up 0|1|2] [--parts K] [--no-learn] [--no-ply] [--no-points] [--quiet]\n"
+     "                            [--up 0|1|2] [--parts K] [--learn-best B] [--no-learn] [--no-ply] [--no-points]\n"
+     "                            [--quiet]\n"
      "\n"
      "Fits deformable part templates to every mesh / polygon soup in DIR (.off .obj .ply .stl) and writes to OUT:\n"
      "  templates.json     the learned template set (edit it and pass it back with --template)\n"
@@ -105,6 +109,7 @@ const cli::register_command reg{
      "  --learn-subset S   shapes held in memory for learning (default 200)\n"
      "  --up A             up axis of the collection: 0 x, 1 y (default), 2 z\n"
      "  --parts K          parts of automatic templates (default 4)\n"
+     "  --learn-best B     automatic mode: learn from the B best candidates, keep the best set (default 2; chapter 10)\n"
      "  --no-learn         label with the given templates as they are\n"
      "  --no-ply, --no-points  skip the visualisation / per-point outputs",
      run_templates}};

@@ -58,3 +58,9 @@ run_cli(2 out match ${first_mesh} ${first_mesh} -o ${WORK}/self.map --pruning bo
 if(NOT out MATCHES "--pruning must be distances or random")
   message(FATAL_ERROR "match --pruning bogus does not name the option:\n${out}")
 endif()
+
+# templates: a bad option value is a usage error (exit code 2) naming the option, before any shape is read.
+run_cli(2 out templates ${WORK}/chairs -o ${WORK}/tpl --learn-best 0)
+if(NOT out MATCHES "--learn-best >= 1")
+  message(FATAL_ERROR "templates --learn-best 0 does not name the option:\n${out}")
+endif()
