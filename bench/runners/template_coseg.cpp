@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // run_template_coseg: COSEG-protocol labeling accuracy of part-based templates (dissertation 5.4.3, Table 5.1).
 //   run_template_coseg CLASS_DIR [--template T.json] [--points N] [--threads N] [--init] [--parts K] [--oversegment M]
-//   [--segment-only] [--candidates N] [--learn-best N] [--report-without ID,ID,...]
+//   [--segment-only] [--candidates N] [--learn-best N] [--report-without ID,ID,...] [--save-templates OUT.json]
 // CLASS_DIR holds shapes/*.off and gt/*.seg (e.g. $SHAPESTRUCT_DATA/coseg_subset/res/chairs). With --template the
 // given (user-authored) template set is fitted and then learned on the collection; without it the fully automatic
 // initialisation is used (--parts K: N_seg parts per candidate, default 4; --oversegment M: initial cells merged
@@ -9,6 +9,7 @@
 // accuracy without learning; --segment-only reports each shape's own initial segmentation against its ground
 // truth (mapping per shape) and stops. --report-without 101,102 also reports the accuracy over the other shapes
 // (one mapping chosen over them alone), e.g. without shapes whose ground truth uses another label convention.
+// --save-templates OUT.json writes the templates that label the shapes (after learning, unless --init).
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -45,11 +46,12 @@ int main(int argc, char** argv) {
   if (argc < 2) {
     std::cerr << "usage: run_template_coseg CLASS_DIR [--template T.json] [--points N] [--threads N] [--init] "
                  "[--parts K] [--oversegment M] [--segment-only] [--candidates N] [--learn-best N] "
-                 "[--report-without ID,ID,...]\n";
+                 "[--report-without ID,ID,...] [--save-templates OUT.json]\n";
     return 2;
   }
   const fs::path dir = argv[1];
   std::string tpl_path;
+  std::string save_path;
   index_t points = 1500;
   int threads = 0;
   bool init_only = false;
@@ -68,6 +70,7 @@ int main(int argc, char** argv) {
     else if (a == "--candidates" && i + 1 < argc) io.candidates = std::stoi(argv[++i]);
     else if (a == "--learn-best" && i + 1 < argc) io.learn_best = std::stoi(argv[++i]);
     else if (a == "--merge-tolerance" && i + 1 < argc) io.merge_tolerance = std::stod(argv[++i]);
+    else if (a == "--save-templates" && i + 1 < argc) save_path = argv[++i];
     else if (a == "--report-without" && i + 1 < argc) {
       std::stringstream list(argv[++i]);
       for (std::string id; std::getline(list, id, ',');) report_without.insert(id);
@@ -127,6 +130,7 @@ int main(int argc, char** argv) {
     templates = auto_templates(samples, lo, io);
   }
   if (!init_only) templates = learn_templates(templates, samples, lo).templates;
+  if (!save_path.empty()) write_templates(save_path, templates);
   const auto t2 = std::chrono::steady_clock::now();
   const auto fits = fit_template_set(templates, samples, lo);
   const auto t3 = std::chrono::steady_clock::now();

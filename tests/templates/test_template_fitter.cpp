@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <numbers>
 #include <random>
 
 #include "shapestruct/templates/template_fitter.hpp"
@@ -124,6 +126,53 @@ TEST_CASE("fit_template recovers the parameters of a shape generated from the te
     const auto rigid = fit_template(t, s, {.deform = false});
     CHECK(rigid.energy > fit.energy);
   }
+}
+
+TEST_CASE("fit_template reaches a bar chair from the pivot start, which the mean starts miss") {
+  // A bar chair in the canonical frame: seat high, long legs, short back (COSEG chairs 9 and 14 are like this).
+  // From the mean arrangement the back box takes the seat; the pivot start maps the template's seat height to
+  // the shape's and the fit converges to the right parts.
+  const auto t = chair_like();
+  const std::vector<Eigen::Vector3d> C{{0, 0.25, 0}, {0, 0.35, -0.23}, {0, -0.09, 0}};
+  const std::vector<Eigen::Vector3d> S{{0.40, 0.06, 0.40}, {0.40, 0.14, 0.05}, {0.06, 0.62, 0.06}};
+  std::vector<index_t> truth;
+  const auto s = sample_boxes(t, C, S, 300, 0, 5, truth);
+  auto accuracy = [&](const template_fit& f) {
+    index_t correct = 0;
+    for (std::size_t i = 0; i < truth.size(); ++i) correct += f.parts[i] == truth[i] ? 1 : 0;
+    return static_cast<double>(correct) / static_cast<double>(truth.size());
+  };
+  const auto from_mean = fit_template(t, s, {.pivot_start_heights = 0});
+  const auto with_pivot = fit_template(t, s);
+  // Measured: from the mean starts 80 % of the points are right, the seat box stops at 0.15 and the energy is
+  // 4 times that of the fit from the pivot start.
+  CHECK(accuracy(from_mean) < 0.85);
+  CHECK(std::abs(from_mean.centers[0].y() - 0.25) > 0.07);
+  CHECK(accuracy(with_pivot) > 0.95);
+  CHECK(with_pivot.energy < 0.5 * from_mean.energy);
+  CHECK(std::abs(with_pivot.centers[0].y() - 0.25) < 0.03);
+
+  // The search itself: the best arrangement puts the seat box near the seat, under rotation 0.
+  std::vector<Eigen::Matrix3d> rotations;
+  std::vector<Eigen::MatrixXd> rotated;
+  for (int r = 0; r < 4; ++r) {
+    rotations.push_back(detail::rotation_about_axis(1, r * std::numbers::pi / 2));
+    rotated.push_back(s.points * rotations.back().transpose());
+  }
+  const knn_index<double, 3> index(s.points);
+  const auto start = best_pivot_start(t, rotated, index, rotations, 12, detail::box_corners_and_faces());
+  CHECK(start.rotation == 0);
+  REQUIRE(start.centers.size() == 3);
+  CHECK(std::abs(start.centers[0].y() - 0.25) < 0.05);
+  CHECK(start.sizes[2].y() > 0.45);  // the legs are stretched
+}
+
+TEST_CASE("best_pivot_start with nothing to try returns an infinite score") {
+  auto t = chair_like();
+  const std::vector<Eigen::Matrix3d> rotations{Eigen::Matrix3d::Identity()};
+  const std::vector<Eigen::MatrixXd> rotated{Eigen::MatrixXd(0, 3)};
+  const knn_index<double, 3> index(Eigen::MatrixXd(0, 3));
+  CHECK(std::isinf(best_pivot_start(t, rotated, index, rotations, 12, detail::box_corners_and_faces()).score));
 }
 
 TEST_CASE("fit_template: energy terms are policies - removing smoothness and features still labels boxes") {

@@ -18,7 +18,9 @@
 #include "shapestruct/templates/alpha_expansion.hpp"
 #include "shapestruct/templates/energy_sum.hpp"
 #include "shapestruct/templates/fit_energy_terms.hpp"
+#include "shapestruct/knn/knn_index.hpp"
 #include "shapestruct/templates/part_template.hpp"
+#include "shapestruct/templates/pivot_start.hpp"
 #include "shapestruct/templates/shape_samples.hpp"
 
 namespace shapestruct {
@@ -34,6 +36,8 @@ struct template_fit_options {
   int rotation_probe_rounds = 3;  ///< rounds every rotation gets before only the best continues
   int graph_cut_sweeps = 1;       ///< alpha-expansion sweeps per round (warm-started from the last labeling)
   bool deform = true;             ///< false: keep the mean template (the chapter's "init" results)
+  /// Heights tried per pivot by the extra start (best_pivot_start; 0: only the mean template starts)
+  int pivot_start_heights = 12;
   std::uint64_t seed = 1;         ///< seeds the template-sample positions (deterministic results)
 };
 
@@ -88,6 +92,22 @@ inline Eigen::Matrix3d rotation_about_axis(int axis, double angle) {
   return R;
 }
 
+/// The 8 corners and 6 face centres of the unit box: the template side of best_pivot_start's chamfer score.
+inline const std::vector<Eigen::Vector3d>& box_corners_and_faces() {
+  static const std::vector<Eigen::Vector3d> points = [] {
+    std::vector<Eigen::Vector3d> v;
+    for (int i = 0; i < 8; ++i) v.emplace_back(i & 1 ? 0.5 : -0.5, i & 2 ? 0.5 : -0.5, i & 4 ? 0.5 : -0.5);
+    for (int k = 0; k < 3; ++k)
+      for (const double side : {-0.5, 0.5}) {
+        Eigen::Vector3d u = Eigen::Vector3d::Zero();
+        u[k] = side;
+        v.push_back(u);
+      }
+    return v;
+  }();
+  return points;
+}
+
 /// Correspondences for the current labels and deformation: s -> t closest box point; t -> s nearest shape point
 /// carrying the same part label (brute force per part: parts hold |P| / K points, cheaper than a tree rebuild).
 inline void update_correspondences(fit_state& x) {
@@ -140,7 +160,8 @@ void regress_deformation(fit_state& x, const Energy& energy) {
 
 }  // namespace detail
 
-/// Fits template t to shape s: for each of the `rotations` candidate rotations about the up axis, alternates
+/// Fits template t to shape s: from each of the `rotations` candidate rotations about the up axis (and one extra
+/// start, see template_fit_options::pivot_start_heights), alternates
 /// (i) labeling by alpha-expansion on the unary and pairwise costs of `energy` (null label included),
 /// (ii) closest-point correspondences within each part in both directions, (iii) closed-form per-part centre and
 /// size regression with the deformation prior, until the labeling stops changing; returns the rotation with
@@ -202,28 +223,51 @@ template <class Energy = chapter5_energy>
     }
     return !changed && moved < opt.deformation_tolerance;
   };
-  // Phase 1: every candidate rotation runs `rotation_probe_rounds` rounds; phase 2: the lowest-energy one runs
-  // to convergence. (The chapter converges all four; after a few rounds the order of the energies is settled in
-  // practice, and this cuts the cost by about 3x.)
+  // Starts: the mean template under each rotation (the chapter's four) plus, unless disabled, the best
+  // piecewise-linear arrangement of best_pivot_start (for shapes whose proportions differ from the template's).
+  // Phase 1: every start runs `rotation_probe_rounds` rounds; phase 2: the lowest-energy one runs to convergence.
+  // (The chapter converges all four; after a few rounds the order of the energies is settled in practice, and
+  // this cuts the cost by about 3x.)
   struct candidate {
     fit_state y;
     Eigen::Matrix3d R;
+    int rotation_index = 0;
     int rounds = 0;
     bool converged = false;
     double e = std::numeric_limits<double>::infinity();
   };
   std::vector<candidate> cands(static_cast<std::size_t>(opt.rotations));
+  std::vector<Eigen::Matrix3d> rotations;
+  std::vector<Eigen::MatrixXd> rotated;
   for (int r = 0; r < opt.rotations; ++r) {
-    auto& c = cands[static_cast<std::size_t>(r)];
-    c.R = detail::rotation_about_axis(t.up_axis, 2 * std::numbers::pi * r / opt.rotations);
+    rotations.push_back(detail::rotation_about_axis(t.up_axis, 2 * std::numbers::pi * r / opt.rotations));
+    rotated.push_back(s.points * rotations.back().transpose());
+  }
+  pivot_start_result pivot;
+  if (opt.pivot_start_heights > 0) {
+    const knn_index<double, 3> index(s.points);
+    pivot = best_pivot_start(t, rotated, index, rotations, opt.pivot_start_heights, detail::box_corners_and_faces());
+    if (std::isfinite(pivot.score)) cands.emplace_back();
+  }
+  for (std::size_t ci = 0; ci < cands.size(); ++ci) {
+    const bool is_pivot = ci == static_cast<std::size_t>(opt.rotations);
+    const auto r = static_cast<std::size_t>(is_pivot ? pivot.rotation : static_cast<int>(ci));
+    auto& c = cands[ci];
+    c.R = rotations[r];
     c.y = x;
-    c.y.p = s.points * c.R.transpose();
-    for (const auto& b : t.parts) {
-      c.y.centers.push_back(b.center);
-      c.y.sizes.push_back(b.size);
+    c.y.p = rotated[r];
+    c.rotation_index = static_cast<int>(r);
+    if (is_pivot) {
+      c.y.centers = pivot.centers;
+      c.y.sizes = pivot.sizes;
+    } else {
+      for (const auto& b : t.parts) {
+        c.y.centers.push_back(b.center);
+        c.y.sizes.push_back(b.size);
+      }
     }
     c.y.t2s.assign(x.t_samples.size(), no_index);
-    const int probe = opt.rotations > 1 ? std::min(opt.rotation_probe_rounds, opt.max_iterations) : opt.max_iterations;
+    const int probe = cands.size() > 1 ? std::min(opt.rotation_probe_rounds, opt.max_iterations) : opt.max_iterations;
     while (!c.converged && c.rounds < probe) {
       c.converged = round(c.y);
       ++c.rounds;
@@ -244,7 +288,7 @@ template <class Energy = chapter5_energy>
   const auto v = energy.values(y);
   best.terms.assign(v.begin(), v.end());
   for (auto& term : best.terms) term /= opt.effective_points;
-  best.rotation_index = static_cast<int>(r_best);
+  best.rotation_index = c.rotation_index;
   best.rotation = c.R;
   best.centers = y.centers;
   best.sizes = y.sizes;
