@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// COSEG chairs with the hand-authored templates (docs/templates/) and an automatic candidate: a few seconds,
-// skipped without data.
+// COSEG chairs with the hand-authored templates (docs/templates/), an automatic candidate, and the fully automatic
+// mode (about 40 s), skipped without data.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -19,6 +19,7 @@
 #include "shapestruct/templates/part_template.hpp"
 #include "shapestruct/templates/template_fitter.hpp"
 #include "shapestruct/templates/template_initializer.hpp"
+#include "shapestruct/templates/template_learner.hpp"
 #include "support/data_path.hpp"
 
 using namespace shapestruct;
@@ -101,4 +102,36 @@ TEST_CASE("COSEG chairs: the automatic candidate from chair 13 gives its four le
   const auto acc = labeling_accuracy({scored_shape(m, s, f.labels, dir / "gt" / "13.seg")});
   MESSAGE("energy " << energy << ", accuracy " << acc.accuracy);
   CHECK(acc.accuracy > 0.95);
+}
+
+TEST_CASE("COSEG chairs: the fully automatic mode labels the consistently labelled chairs above 91.2 %") {
+  SHAPESTRUCT_REQUIRE_DATA(dir, "coseg_subset/res/chairs");
+  // The issue's protocol (one best one-to-one label mapping for the whole set, accuracy by face area) over the 17
+  // chairs whose ground truth numbers back and legs the same way (docs/templates/coseg_chairs_oracle.py finds the
+  // other five from label heights). 91.2 % is the chapter's automatic result on the 400 chairs. About 40 s.
+  const std::set<std::string> other_convention{"101", "102", "103", "109", "110"};
+  std::vector<std::filesystem::path> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "shapes"))
+    if (e.path().extension() == ".off") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  REQUIRE(files.size() == 22);
+  std::vector<triangle_mesh<double>> meshes;
+  std::vector<shape_samples> samples;
+  for (const auto& f : files) {
+    meshes.push_back(read_mesh(f).mesh);
+    samples.push_back(make_shape_samples(meshes.back()));
+  }
+  template_learner_options lo;
+  const auto templates = learn_templates(auto_templates(samples, lo), samples, lo).templates;
+  const auto fits = fit_template_set(templates, samples, lo);
+  std::vector<labeled_shape> kept;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const auto id = files[i].stem().string();
+    if (other_convention.count(id) == 0)
+      kept.push_back(scored_shape(meshes[i], samples[i], fits[i].fit.labels, dir / "gt" / (id + ".seg")));
+  }
+  REQUIRE(kept.size() == 17);
+  const auto acc = labeling_accuracy(kept);
+  MESSAGE(templates.size() << " templates, accuracy on the 17 chairs " << acc.accuracy);
+  CHECK(acc.accuracy > 0.912);
 }
