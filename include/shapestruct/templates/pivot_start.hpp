@@ -56,6 +56,7 @@ inline double squared_distance_to_box_surface(const Eigen::Matrix3d& axes, const
 /// \param rotations  per rotation, the matrix R with rotated = points * R^T
 /// \param heights    shape heights tried per pivot, evenly spread over the shape's extent along the up axis
 /// \param unit_samples points on the unit box surface (coordinates in [-0.5, 0.5]) used for the template side
+/// \param point_stride every point_stride-th shape point is scored (the score only ranks arrangements; >= 1)
 /// \returns the arrangement with the lowest chamfer score (score infinite if there is nothing to try)
 /// Complexity: rotations x pivots x heights x (P/stride x K + K x |unit_samples| log P).
 [[nodiscard]] inline pivot_start_result best_pivot_start(const part_template& t,
@@ -88,6 +89,7 @@ inline double squared_distance_to_box_surface(const Eigen::Matrix3d& axes, const
     const Eigen::MatrixXd& p = rotated[r];
     if (p.rows() == 0) continue;
     const Eigen::Vector3d lo = p.colwise().minCoeff().transpose(), hi = p.colwise().maxCoeff().transpose();
+    if (!(hi[up] - lo[up] > 1e-9)) continue;  // a flat shape: every arrangement would crush the boxes
     for (const double ht : pivots)
       for (int j = 0; j < heights; ++j) {
         const double hs = lo[up] + (j + 0.5) / heights * (hi[up] - lo[up]);
@@ -109,7 +111,7 @@ inline double squared_distance_to_box_surface(const Eigen::Matrix3d& axes, const
         // Symmetric chamfer: shape points to the nearest box surface, box-surface samples to the nearest point.
         double s2t = 0;
         index_t ns = 0;
-        for (index_t i = 0; i < p.rows(); i += point_stride, ++ns) {
+        for (index_t i = 0; i < p.rows(); i += std::max(point_stride, 1), ++ns) {
           double d = std::numeric_limits<double>::infinity();
           for (std::size_t b = 0; b < K; ++b)
             d = std::min(d, detail::squared_distance_to_box_surface(t.parts[b].axes, centers[b], sizes[b],
