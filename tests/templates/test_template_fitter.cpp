@@ -232,4 +232,5 @@ TEST_CASE("fit_template bad input") {
   }
   CHECK_THROWS_AS((void)fit_template(feat, s), invalid_input);  // samples have 0 features
   CHECK_THROWS_AS((void)fit_template(t, s, {.rotations = 0}), invalid_input);
+  CHECK_THROWS_AS((void)fit_template(t, s, {.pivot_start_heights = -1}), invalid_input);
 }

@@ -15,10 +15,10 @@
 
 #include "shapestruct/core/status.hpp"
 #include "shapestruct/core/types.hpp"
+#include "shapestruct/knn/knn_index.hpp"
 #include "shapestruct/templates/alpha_expansion.hpp"
 #include "shapestruct/templates/energy_sum.hpp"
 #include "shapestruct/templates/fit_energy_terms.hpp"
-#include "shapestruct/knn/knn_index.hpp"
 #include "shapestruct/templates/part_template.hpp"
 #include "shapestruct/templates/pivot_start.hpp"
 #include "shapestruct/templates/shape_samples.hpp"
@@ -180,10 +180,11 @@ template <class Energy = chapter5_energy>
   validate_template(t, "fit_template");
   validate_samples(s, "fit_template");
   if (opt.rotations < 1 || opt.max_iterations < 1 || opt.samples_per_part < 1 || !(opt.distance_unit > 0) ||
-      opt.graph_cut_sweeps < 1 || !(opt.effective_points > 0) || opt.rotation_probe_rounds < 1)
+      opt.graph_cut_sweeps < 1 || !(opt.effective_points > 0) || opt.rotation_probe_rounds < 1 ||
+      opt.pivot_start_heights < 0)
     throw invalid_input(input_error::bad_parameter, no_index,
-                        "fit_template: rotations, max_iterations, samples_per_part, graph_cut_sweeps must be >= 1 "
-                        "and distance_unit > 0");
+                        "fit_template: rotations, max_iterations, samples_per_part, graph_cut_sweeps must be >= 1, "
+                        "pivot_start_heights >= 0 and distance_unit > 0");
   if (t.parts.front().feature_mean.size() > s.features.cols())
     throw invalid_input(input_error::size_mismatch, no_index,
                         "fit_template: template '" + t.id + "' has " +
