@@ -47,6 +47,22 @@ inline double squared_distance_to_box_surface(const Eigen::Matrix3d& axes, const
   return inside * inside;
 }
 
+/// The 8 corners and 6 face centres of the unit box: the template side of best_pivot_start's chamfer score.
+inline const std::vector<Eigen::Vector3d>& box_corners_and_faces() {
+  static const std::vector<Eigen::Vector3d> points = [] {
+    std::vector<Eigen::Vector3d> v;
+    for (int i = 0; i < 8; ++i) v.emplace_back(i & 1 ? 0.5 : -0.5, i & 2 ? 0.5 : -0.5, i & 4 ? 0.5 : -0.5);
+    for (int k = 0; k < 3; ++k)
+      for (const double side : {-0.5, 0.5}) {
+        Eigen::Vector3d u = Eigen::Vector3d::Zero();
+        u[k] = side;
+        v.push_back(u);
+      }
+    return v;
+  }();
+  return points;
+}
+
 }  // namespace detail
 
 /// Searches piecewise-linear arrangements of t's mean boxes over the shape points seen under each rotation.

@@ -92,22 +92,6 @@ inline Eigen::Matrix3d rotation_about_axis(int axis, double angle) {
   return R;
 }
 
-/// The 8 corners and 6 face centres of the unit box: the template side of best_pivot_start's chamfer score.
-inline const std::vector<Eigen::Vector3d>& box_corners_and_faces() {
-  static const std::vector<Eigen::Vector3d> points = [] {
-    std::vector<Eigen::Vector3d> v;
-    for (int i = 0; i < 8; ++i) v.emplace_back(i & 1 ? 0.5 : -0.5, i & 2 ? 0.5 : -0.5, i & 4 ? 0.5 : -0.5);
-    for (int k = 0; k < 3; ++k)
-      for (const double side : {-0.5, 0.5}) {
-        Eigen::Vector3d u = Eigen::Vector3d::Zero();
-        u[k] = side;
-        v.push_back(u);
-      }
-    return v;
-  }();
-  return points;
-}
-
 /// Correspondences for the current labels and deformation: s -> t closest box point; t -> s nearest shape point
 /// carrying the same part label (brute force per part: parts hold |P| / K points, cheaper than a tree rebuild).
 inline void update_correspondences(fit_state& x) {
