@@ -156,7 +156,8 @@ void regress_deformation(fit_state& x, const Energy& energy) {
 /// \throws invalid_input from validate_template / validate_samples (bad template or samples), bad_parameter for
 ///         options out of range, size_mismatch when the template's feature dimension exceeds the samples'.
 /// \returns the best fit; info = numerical_issue when every rotation violated a must-exist part (energy inf).
-/// Complexity: rotations x iterations x (P K box distances + sweeps K max-flows on P nodes + P K_samples).
+/// Complexity: (rotations + 1) x iterations x (P K box distances + sweeps K max-flows on P nodes + P K_samples),
+/// plus the pivot search (best_pivot_start: rotations x pivots x heights x (P / 4 x K + 14 K log P)).
 template <class Energy = chapter5_energy>
 [[nodiscard]] template_fit fit_template(const part_template& t, const shape_samples& s,
                                         const template_fit_options& opt = {},
