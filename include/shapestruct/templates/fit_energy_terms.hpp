@@ -66,22 +66,8 @@ struct fit_state {
   }
   /// Closest point on the surface of deformed box b to x: its unit coordinate, and the squared distance.
   [[nodiscard]] std::pair<Eigen::Vector3d, double> closest_on_box(index_t b, const Eigen::Vector3d& x) const {
-    const auto& box = tpl->parts[static_cast<std::size_t>(b)];
-    const Eigen::Vector3d& s = sizes[static_cast<std::size_t>(b)];
-    const Eigen::Vector3d l = box.axes * (x - centers[static_cast<std::size_t>(b)]);
-    const Eigen::Vector3d h = 0.5 * s;
-    Eigen::Vector3d c = l.cwiseMax(-h).cwiseMin(h);
-    if (c == l) {  // inside: push to the nearest face (the box is a surface, not a solid)
-      int k = 0;
-      double best = std::numeric_limits<double>::infinity();
-      for (int a = 0; a < 3; ++a)
-        if (h[a] - std::abs(l[a]) < best) {
-          best = h[a] - std::abs(l[a]);
-          k = a;
-        }
-      c[k] = l[k] >= 0 ? h[k] : -h[k];
-    }
-    return {c.cwiseQuotient(s), (l - c).squaredNorm()};
+    return detail::closest_on_box_surface(tpl->parts[static_cast<std::size_t>(b)].axes,
+                                          centers[static_cast<std::size_t>(b)], sizes[static_cast<std::size_t>(b)], x);
   }
 };
 

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -49,6 +51,31 @@ struct part_template {
     return l;
   }
 };
+
+namespace detail {
+
+/// Closest point on the SURFACE of a box (rows of `axes` its axes, centre c, side lengths s) to x: its unit-box
+/// coordinate (in [-0.5, 0.5]^3) and the squared distance. A point inside is pushed to the nearest face: a
+/// template box stands for a surface, not a solid. Shared by the fitter and its start search.
+inline std::pair<Eigen::Vector3d, double> closest_on_box_surface(const Eigen::Matrix3d& axes, const Eigen::Vector3d& c,
+                                                                 const Eigen::Vector3d& s, const Eigen::Vector3d& x) {
+  const Eigen::Vector3d l = axes * (x - c);
+  const Eigen::Vector3d h = 0.5 * s;
+  Eigen::Vector3d q = l.cwiseMax(-h).cwiseMin(h);
+  if (q == l) {
+    int k = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a)
+      if (h[a] - std::abs(l[a]) < best) {
+        best = h[a] - std::abs(l[a]);
+        k = a;
+      }
+    q[k] = l[k] >= 0 ? h[k] : -h[k];
+  }
+  return {q.cwiseQuotient(s), (l - q).squaredNorm()};
+}
+
+}  // namespace detail
 
 /// Checks a template's invariants: at least one part; finite numbers; positive sizes and sigmas; orthonormal
 /// axes; every part with the same feature dimension (or all without features); non-negative labels; up axis in

@@ -36,17 +36,6 @@ struct pivot_start_result {
 
 namespace detail {
 
-/// Squared distance from x to the surface of a box (centre c, rows of `axes` its axes, side lengths s).
-inline double squared_distance_to_box_surface(const Eigen::Matrix3d& axes, const Eigen::Vector3d& c,
-                                              const Eigen::Vector3d& s, const Eigen::Vector3d& x) {
-  const Eigen::Vector3d l = axes * (x - c);
-  const Eigen::Vector3d h = 0.5 * s;
-  const Eigen::Vector3d out = (l.cwiseAbs() - h).cwiseMax(0.0);
-  if (out.squaredNorm() > 0) return out.squaredNorm();
-  const double inside = (h - l.cwiseAbs()).minCoeff();  // inside: distance to the nearest face
-  return inside * inside;
-}
-
 /// The 8 corners and 6 face centres of the unit box: the template side of best_pivot_start's chamfer score.
 inline const std::vector<Eigen::Vector3d>& box_corners_and_faces() {
   static const std::vector<Eigen::Vector3d> points = [] {
@@ -122,7 +111,8 @@ inline const std::vector<Eigen::Vector3d>& box_corners_and_faces() {
             centers[b][a] = 0.5 * (l + h);
             scale[a] = half[b][a] > 1e-12 ? (h - l) / (2 * half[b][a]) : 1.0;
           }
-          for (int k = 0; k < 3; ++k) sizes[b][k] = box.size[k] * scale.cwiseProduct(box.axes.row(k).transpose()).norm();
+          for (int k = 0; k < 3; ++k)
+            sizes[b][k] = box.size[k] * scale.cwiseProduct(box.axes.row(k).transpose()).norm();
         }
         // Symmetric chamfer: shape points to the nearest box surface, box-surface samples to the nearest point.
         double s2t = 0;
@@ -130,8 +120,8 @@ inline const std::vector<Eigen::Vector3d>& box_corners_and_faces() {
         for (index_t i = 0; i < p.rows(); i += std::max(point_stride, 1), ++ns) {
           double d = std::numeric_limits<double>::infinity();
           for (std::size_t b = 0; b < K; ++b)
-            d = std::min(d, detail::squared_distance_to_box_surface(t.parts[b].axes, centers[b], sizes[b],
-                                                                    p.row(i).transpose()));
+            d = std::min(d, detail::closest_on_box_surface(t.parts[b].axes, centers[b], sizes[b],
+                                                           p.row(i).transpose()).second);
           s2t += d;
         }
         double t2s = 0;
