@@ -8,4 +8,6 @@
 #include "shapestruct/core/concepts/linear_operator.hpp"
 #include "shapestruct/core/concepts/pairwise_matcher.hpp"
 #include "shapestruct/core/concepts/point_set.hpp"
+#include "shapestruct/core/concepts/shape_aligner.hpp"
+#include "shapestruct/core/concepts/shape_descriptor.hpp"
 #include "shapestruct/core/concepts/surface_mesh.hpp"
