@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: MIT
+// correspondence_matrix: the sparse, row-normalised NK x NK matrix C of ch. 4.3.5 as a matrix-free operator.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "shapestruct/collection/pair_alignment.hpp"
+#include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/types.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
+
+namespace shapestruct {
+
+/// One edge of the alignment graph as it enters C: the shapes and the chosen alternative's scores a(p_i, p_j)
+/// (rows: samples of `source`, columns: samples of `target`).
+struct correspondence_edge {
+  index_t source = no_index;
+  index_t target = no_index;
+  const Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>* scores = nullptr;
+};
+
+/// The correspondence matrix of a collection (eq. 4.6), stored per shape as the blocks of its incident edges,
+/// never assembled: for an edge (k, l) the block C(P_k, P_l) is a(., .) with every row normalised to sum 1 (each
+/// point is mapped somewhere with constant energy) and C(P_l, P_k) is a^T row-normalised likewise. Diffusion
+/// needs a symmetric kernel, so the operator is W = (C + C^T) / 2 with degrees d = W 1, applied as the symmetric
+/// normalised form A = D^-1/2 W D^-1/2, whose eigenvectors U give the right eigenvectors D^-1/2 U of the
+/// random walk D^-1 W (Nadler et al.'s normalisation). A tiny self-weight keeps every degree positive.
+/// Models LinearOperator (Spectra's requirements), so any EmbeddingSolver can take it. perform_op runs in
+/// parallel over shapes (each writes only its own rows), so results do not depend on the thread count.
+class correspondence_matrix {
+ public:
+  using Scalar = double;
+
+  /// \param sample_counts K_i per shape  \param edges the graph's edges with their chosen alternatives
+  /// \param threads std::threads for the products (0 = all cores)
+  /// \throws invalid_input (bad_parameter) for an edge naming a shape out of range or a block of the wrong size,
+  ///         or a negative or non-finite score.
+  correspondence_matrix(std::span<const index_t> sample_counts, std::span<const correspondence_edge> edges,
+                        int threads = 0)
+      : threads_(detail::resolve_threads(threads, "correspondence_matrix")) {
+    const char* who = "correspondence_matrix";
+    const index_t N = static_cast<index_t>(sample_counts.size());
+    offset_.assign(static_cast<std::size_t>(N + 1), 0);
+    for (index_t i = 0; i < N; ++i) offset_[std::size_t(i + 1)] = offset_[std::size_t(i)] + sample_counts[std::size_t(i)];
+    incident_.resize(static_cast<std::size_t>(N));
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const auto& E = edges[e];
+      if (E.source < 0 || E.source >= N || E.target < 0 || E.target >= N || E.source == E.target || !E.scores)
+        throw invalid_input(input_error::bad_parameter, static_cast<index_t>(e),
+                            std::string(who) + ": edge " + std::to_string(e) + " names shapes " +
+                                std::to_string(E.source) + " and " + std::to_string(E.target) + " of " +
+                                std::to_string(N) + " (or has no scores)");
+      const auto& a = *E.scores;
+      if (a.rows() != sample_counts[std::size_t(E.source)] || a.cols() != sample_counts[std::size_t(E.target)])
+        throw invalid_input(input_error::size_mismatch, static_cast<index_t>(e),
+                            std::string(who) + ": edge " + std::to_string(e) + " has a " + std::to_string(a.rows()) +
+                                " x " + std::to_string(a.cols()) + " score block for shapes of " +
+                                std::to_string(sample_counts[std::size_t(E.source)]) + " and " +
+                                std::to_string(sample_counts[std::size_t(E.target)]) + " samples");
+      for (index_t k = 0; k < a.nonZeros(); ++k) {
+        const float v = a.valuePtr()[k];
+        if (!(v >= 0.0f) || !std::isfinite(v))
+          throw invalid_input(input_error::bad_parameter, static_cast<index_t>(e),
+                              std::string(who) + ": edge " + std::to_string(e) + " has a negative or non-finite score");
+      }
+      const block_matrix forward = row_normalised(a.cast<double>());
+      const block_matrix backward = row_normalised(block_matrix(a.cast<double>().transpose()));
+      // W(P_k, P_l) = (C(P_k, P_l) + C(P_l, P_k)^T) / 2, and W(P_l, P_k) is its transpose.
+      block_matrix w = 0.5 * (forward + block_matrix(backward.transpose()));
+      incident_[std::size_t(E.target)].push_back({E.source, block_matrix(w.transpose())});
+      incident_[std::size_t(E.source)].push_back({E.target, std::move(w)});
+    }
+    const index_t n = offset_.back();
+    degree_.setConstant(n, self_weight);
+    for (index_t k = 0; k < N; ++k)
+      for (const auto& [other, w] : incident_[std::size_t(k)])
+        for (index_t r = 0; r < w.outerSize(); ++r)
+          for (block_matrix::InnerIterator it(w, r); it; ++it) degree_[offset_[std::size_t(k)] + r] += it.value();
+    inv_sqrt_degree_ = degree_.cwiseSqrt().cwiseInverse();
+  }
+
+  [[nodiscard]] index_t rows() const noexcept { return offset_.back(); }
+  [[nodiscard]] index_t cols() const noexcept { return offset_.back(); }
+  [[nodiscard]] index_t shapes() const noexcept { return static_cast<index_t>(incident_.size()); }
+  /// First row of shape k (rows of shape k are offset(k) .. offset(k + 1) - 1).
+  [[nodiscard]] index_t offset(index_t k) const { return offset_[std::size_t(k)]; }
+  [[nodiscard]] const vector_x<double>& degrees() const noexcept { return degree_; }
+  [[nodiscard]] const vector_x<double>& inverse_sqrt_degrees() const noexcept { return inv_sqrt_degree_; }
+
+  /// y = D^-1/2 W D^-1/2 x (Spectra's operator interface).
+  void perform_op(const double* x_in, double* y_out) const {
+    const index_t n = rows();
+    Eigen::Map<const vector_x<double>> x(x_in, n);
+    Eigen::Map<vector_x<double>> y(y_out, n);
+    detail::parallel_for(shapes(), threads_, [&](index_t k) {
+      const index_t o = offset_[std::size_t(k)];
+      const index_t m = offset_[std::size_t(k + 1)] - o;
+      vector_x<double> acc = self_weight * x.segment(o, m).cwiseProduct(inv_sqrt_degree_.segment(o, m));
+      for (const auto& [other, w] : incident_[std::size_t(k)]) {
+        const index_t oo = offset_[std::size_t(other)];
+        acc.noalias() += w * x.segment(oo, w.cols()).cwiseProduct(inv_sqrt_degree_.segment(oo, w.cols()));
+      }
+      y.segment(o, m) = acc.cwiseProduct(inv_sqrt_degree_.segment(o, m));
+    });
+  }
+
+  /// The weight every point gives itself: small enough to leave the diffusion unchanged, large enough that a
+  /// point whose scores all underflowed still has a positive degree.
+  static constexpr double self_weight = 1e-6;
+
+ private:
+  using block_matrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+  struct incident_block {
+    index_t other;
+    block_matrix w;  ///< rows: this shape's samples, columns: the other shape's
+  };
+
+  static block_matrix row_normalised(block_matrix a) {
+    for (index_t r = 0; r < a.outerSize(); ++r) {
+      double s = 0;
+      for (block_matrix::InnerIterator it(a, r); it; ++it) s += it.value();
+      if (s > 0)
+        for (block_matrix::InnerIterator it(a, r); it; ++it) it.valueRef() /= s;
+    }
+    return a;
+  }
+
+  unsigned threads_ = 1;
+  std::vector<index_t> offset_;
+  std::vector<std::vector<incident_block>> incident_;
+  vector_x<double> degree_;
+  vector_x<double> inv_sqrt_degree_;
+};
+
+}  // namespace shapestruct

@@ -1,0 +1,305 @@
+// SPDX-License-Identifier: MIT
+// compute_fuzzy_correspondences: the whole chapter-4 pipeline over a collection of shape records (Algorithm 1).
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "shapestruct/collection/alignment_graph.hpp"
+#include "shapestruct/collection/edge_rank.hpp"
+#include "shapestruct/collection/pair_alignment.hpp"
+#include "shapestruct/collection/shape_record.hpp"
+#include "shapestruct/core/concepts/shape_aligner.hpp"
+#include "shapestruct/core/errors.hpp"
+#include "shapestruct/detail/disjoint_sets.hpp"
+#include "shapestruct/detail/parallel_for.hpp"
+#include "shapestruct/fuzzy/alignment_store.hpp"
+#include "shapestruct/fuzzy/correspondence_matrix.hpp"
+#include "shapestruct/fuzzy/diffusion_embedding.hpp"
+#include "shapestruct/fuzzy/fuzzy_correspondence.hpp"
+
+namespace shapestruct {
+
+/// Options of compute_fuzzy_correspondences (the chapter's defaults).
+struct fuzzy_collection_options {
+  initial_graph_options graph{};            ///< M = 5 edges per shape, 3M candidates (ch. 4.3.2)
+  diffusion_embedding_options embedding{};  ///< t = 10, the top K eigenvectors (ch. 4.3.5)
+  fuzzy_correspondence_options fuzzy{};     ///< tau from the 15 % nearest points, zero beyond 2 tau (ch. 4.3.6)
+  /// An edge whose consistency score is below this fraction of the best score at both of its shapes is pruned.
+  double prune_fraction = 0.3;
+  /// New edges join shapes whose shortest path in the pruned graph is longer than this many edges.
+  index_t new_edge_min_path = 3;
+  index_t max_iterations = 10;  ///< the chapter converges within 8
+  /// Integrated fuzzy correspondences rank the candidate new edges over every stride-th sample of each shape
+  /// (1 = all K^2 pairs); the first farthest-point samples cover the shape evenly, so 4 (64 of 128^2 pairs)
+  /// changes the ranking little and is 16 times cheaper, which matters when O(N^2) pairs are candidates.
+  index_t ifc_stride = 4;
+  int threads = 0;                       ///< 0 = all cores; results do not depend on it
+  std::filesystem::path cache_folder{};  ///< pairwise alignments are cached here ("" = not cached)
+  /// Progress: (stage, done, total). Stages: "align", "embed", "optimize". The library never prints.
+  std::function<void(const std::string&, std::size_t, std::size_t)> on_progress{};
+};
+
+/// One edge of the final alignment graph and the alternative it uses.
+struct fuzzy_graph_edge {
+  index_t source = no_index;  ///< the smaller shape index
+  index_t target = no_index;
+  index_t alternative = 0;    ///< index into the pair's alignment alternatives
+  double consistency = 0;     ///< score_f (eq. 4.10) of that alternative under the final f
+};
+
+/// What one round of the graph optimisation did (ch. 4.3.7).
+struct fuzzy_iteration {
+  index_t iteration = 0;             ///< 0: the initial graph
+  index_t edges = 0;                 ///< edges in the graph embedded in this round
+  index_t alternatives_changed = 0;  ///< edges that switched to a more consistent alternative
+  index_t pruned = 0;                ///< inconsistent edges removed
+  index_t added = 0;                 ///< new edges aligned and added
+  index_t reconnected = 0;           ///< pruned edges put back because the graph fell apart without them
+  std::size_t pairs_aligned = 0;     ///< distinct pairs aligned so far (from the cache or computed)
+  double mean_consistency = 0;       ///< mean score_f over the graph's edges before pruning
+  double align_seconds = 0, embed_seconds = 0, optimize_seconds = 0;
+  status embedding_info = status::ok;
+};
+
+/// Result of compute_fuzzy_correspondences.
+struct fuzzy_collection_result {
+  std::vector<fuzzy_graph_edge> edges;  ///< the final graph, sorted by (source, target)
+  fuzzy_correspondence fuzzy;           ///< f of the final graph
+  std::vector<fuzzy_iteration> log;     ///< one entry per round, the initial graph first
+  std::size_t pairs_aligned = 0;        ///< distinct pairs aligned over the whole run
+  std::size_t pairs_computed = 0;       ///< of which computed in this process (the rest came from the cache)
+  bool converged = false;               ///< the graph stopped changing before max_iterations
+};
+
+namespace detail {
+
+/// Consistency score of an alternative (eq. 4.10): sum over source samples p1 of sum_p2 a(p1, p2) f(p1, p2),
+/// each row divided by sum over the target's samples of f(p1, p).
+inline double consistency_score(const alignment_alternative& alt, const fuzzy_correspondence& f, index_t source,
+                                index_t target) {
+  const auto& a = alt.scores;
+  double score = 0;
+  for (index_t i = 0; i < a.outerSize(); ++i) {
+    if (a.outerIndexPtr()[i] == a.outerIndexPtr()[i + 1]) continue;
+    const Eigen::VectorXd row = f.row(f.point(source, i), target);
+    const double norm = row.sum();
+    if (!(norm > 0)) continue;
+    double s = 0;
+    for (Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>::InnerIterator it(a, i); it; ++it)
+      s += double(it.value()) * row[it.col()];
+    score += s / norm;
+  }
+  return score;
+}
+
+}  // namespace detail
+
+/// Fuzzy correspondences of a collection (ch. 4.3): initial alignment graph from the records' descriptors, the
+/// pairwise alignments of its edges (ShapeAligner, in parallel, cached), the correspondence matrix and its
+/// diffusion embedding, f, and Algorithm 1 until the graph stops changing: every edge takes its most
+/// consistent alternative, edges far below both shapes' best are pruned, and as many new pairs are aligned,
+/// chosen among those more than new_edge_min_path edges apart by integrated fuzzy correspondence, then by edge
+/// rank. The graph is kept connected: a prune that would split it is undone for the most consistent of the
+/// pruned edges that reconnect it (the chapter assumes a connected collection and does not say).
+/// \param records the shapes (at least 2)  \param aligner the pairwise matcher policy
+/// \param solver EmbeddingSolver for the diffusion map
+/// \throws invalid_input (empty) for fewer than 2 shapes, (size_mismatch) for descriptors of unequal length,
+///         (bad_parameter) for options; whatever the aligner throws.
+template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
+[[nodiscard]] fuzzy_collection_result compute_fuzzy_correspondences(const std::vector<shape_record>& records,
+                                                                    const Aligner& aligner,
+                                                                    const fuzzy_collection_options& options = {},
+                                                                    const Solver& solver = {}) {
+  using clock = std::chrono::steady_clock;
+  auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+  const char* who = "compute_fuzzy_correspondences";
+  const index_t N = static_cast<index_t>(records.size());
+  if (N < 2) throw invalid_input(input_error::empty, no_index, std::string(who) + ": a collection needs at least 2 shapes");
+  if (!(options.prune_fraction >= 0 && options.prune_fraction <= 1))
+    throw invalid_input(input_error::bad_parameter, no_index, std::string(who) + ": prune_fraction must be in [0, 1]");
+  if (options.ifc_stride < 1 || options.max_iterations < 0 || options.new_edge_min_path < 1)
+    throw invalid_input(input_error::bad_parameter, no_index,
+                        std::string(who) + ": ifc_stride and new_edge_min_path must be >= 1, max_iterations >= 0");
+  auto progress = [&](const std::string& stage, std::size_t done, std::size_t total) {
+    if (options.on_progress) options.on_progress(stage, done, total);
+  };
+
+  std::vector<Eigen::VectorXd> descriptors;
+  for (const auto& r : records) descriptors.push_back(r.descriptor);
+  const alignment_graph g0 = initial_alignment_graph(descriptor_distance_matrix(descriptors), options.graph);
+
+  alignment_store store(records, options.cache_folder);
+  using key = alignment_store::key;
+  std::map<key, index_t> chosen;  // the graph: edge -> alternative
+  std::vector<index_t> sample_counts;
+  for (const auto& r : records) sample_counts.push_back(r.sample_count());
+
+  auto align = [&](const std::vector<key>& pairs) {
+    store.ensure(pairs, aligner, options.threads, [&](std::size_t d, std::size_t t) { progress("align", d, t); });
+  };
+  auto embed = [&](fuzzy_iteration& it) {
+    const auto t0 = clock::now();
+    progress("embed", 0, 1);
+    std::vector<correspondence_edge> ce;
+    for (const auto& [k, alt] : chosen)
+      ce.push_back({k.first, k.second, &store.at(k.first, k.second).alternatives[std::size_t(alt)].scores});
+    const correspondence_matrix C(sample_counts, ce, options.threads);
+    auto e = embed_diffusion(C, options.embedding, solver);
+    it.embedding_info = e.info;
+    fuzzy_correspondence_options fo = options.fuzzy;
+    fo.threads = options.threads;
+    fuzzy_correspondence f = make_fuzzy_correspondence(std::move(e), fo);
+    it.embed_seconds = since(t0);
+    progress("embed", 1, 1);
+    return f;
+  };
+
+  fuzzy_collection_result out;
+  fuzzy_iteration first;
+  {
+    const auto t0 = clock::now();
+    std::vector<key> pairs;
+    for (const auto& [a, b] : g0.edges) pairs.push_back(alignment_store::make_key(a, b));
+    align(pairs);
+    for (const auto& p : pairs) chosen[p] = store.at(p.first, p.second).initial;
+    first.align_seconds = since(t0);
+  }
+  first.edges = static_cast<index_t>(chosen.size());
+  first.pairs_aligned = store.size();
+  fuzzy_correspondence f = embed(first);
+  out.log.push_back(first);
+
+  for (index_t iteration = 1; iteration <= options.max_iterations; ++iteration) {
+    fuzzy_iteration it;
+    it.iteration = iteration;
+    const auto t_opt = clock::now();
+    // 1. Every edge takes its most consistent alternative (scores computed in parallel, one edge per item).
+    std::vector<key> edges;
+    for (const auto& [k, alt] : chosen) edges.push_back(k);
+    std::vector<index_t> best_alt(edges.size());
+    std::vector<double> best_score(edges.size());
+    const unsigned workers = detail::resolve_threads(options.threads, who);
+    detail::parallel_for(static_cast<index_t>(edges.size()), workers, [&](index_t e) {
+      const auto& pa = store.at(edges[std::size_t(e)].first, edges[std::size_t(e)].second);
+      index_t arg = chosen.at(edges[std::size_t(e)]);
+      double best = detail::consistency_score(pa.alternatives[std::size_t(arg)], f, pa.source, pa.target);
+      for (std::size_t a = 0; a < pa.alternatives.size(); ++a) {
+        const double s = detail::consistency_score(pa.alternatives[a], f, pa.source, pa.target);
+        if (s > best) best = s, arg = static_cast<index_t>(a);
+      }
+      best_alt[std::size_t(e)] = arg;
+      best_score[std::size_t(e)] = best;
+    });
+    double sum_score = 0;
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      if (chosen[edges[e]] != best_alt[e]) ++it.alternatives_changed;
+      chosen[edges[e]] = best_alt[e];
+      sum_score += best_score[e];
+    }
+    it.mean_consistency = edges.empty() ? 0 : sum_score / double(edges.size());
+    // 2. Prune edges below prune_fraction of the best score at both of their shapes.
+    std::vector<double> node_best(static_cast<std::size_t>(N), 0.0);
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      node_best[std::size_t(edges[e].first)] = std::max(node_best[std::size_t(edges[e].first)], best_score[e]);
+      node_best[std::size_t(edges[e].second)] = std::max(node_best[std::size_t(edges[e].second)], best_score[e]);
+    }
+    std::vector<std::size_t> pruned;
+    for (std::size_t e = 0; e < edges.size(); ++e)
+      if (best_score[e] < options.prune_fraction * node_best[std::size_t(edges[e].first)] &&
+          best_score[e] < options.prune_fraction * node_best[std::size_t(edges[e].second)])
+        pruned.push_back(e);
+    for (const auto e : pruned) chosen.erase(edges[e]);
+    // Keep the graph connected: put back the most consistent pruned edges that join two components.
+    {
+      detail::disjoint_sets dsu(N);
+      for (const auto& [k, alt] : chosen) dsu.unite(k.first, k.second);
+      std::vector<std::size_t> order = pruned;
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return best_score[x] > best_score[y]; });
+      for (const auto e : order)
+        if (dsu.unite(edges[e].first, edges[e].second)) {
+          chosen[edges[e]] = best_alt[e];
+          ++it.reconnected;
+        }
+    }
+    it.pruned = static_cast<index_t>(pruned.size()) - it.reconnected;
+    // 3. As many new edges: far apart in the graph, highest integrated fuzzy correspondence, then edge rank.
+    const index_t add = it.pruned;
+    std::vector<key> added;
+    if (add > 0) {
+      alignment_graph pruned_graph;
+      pruned_graph.nodes = N;
+      for (const auto& [k, alt] : chosen) pruned_graph.edges.push_back(k);
+      std::vector<key> far;
+      for (index_t s = 0; s < N; ++s) {
+        const auto hops = shortest_path_lengths(pruned_graph, s);
+        for (index_t t = s + 1; t < N; ++t)
+          if ((hops[std::size_t(t)] < 0 || hops[std::size_t(t)] > options.new_edge_min_path) && !store.contains(s, t))
+            far.push_back({s, t});
+      }
+      std::vector<double> ifc(far.size());
+      detail::parallel_for(static_cast<index_t>(far.size()), workers, [&](index_t c) {
+        ifc[std::size_t(c)] = f.integrated(far[std::size_t(c)].first, far[std::size_t(c)].second, options.ifc_stride);
+      });
+      std::vector<std::size_t> order(far.size());
+      std::iota(order.begin(), order.end(), std::size_t{0});
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return ifc[x] > ifc[y]; });
+      order.resize(std::min<std::size_t>(order.size(), std::size_t(3 * add)));
+      std::vector<std::pair<index_t, index_t>> candidates;
+      for (const auto c : order) candidates.push_back(far[c]);
+      if (!candidates.empty()) {
+        const auto fiedler = fiedler_vector(N, std::span<const std::pair<index_t, index_t>>(pruned_graph.edges));
+        const auto rank = edge_ranks(fiedler, std::span<const std::pair<index_t, index_t>>(candidates));
+        std::vector<std::size_t> by_rank(candidates.size());
+        std::iota(by_rank.begin(), by_rank.end(), std::size_t{0});
+        std::stable_sort(by_rank.begin(), by_rank.end(), [&](std::size_t x, std::size_t y) { return rank[x] > rank[y]; });
+        by_rank.resize(std::min<std::size_t>(by_rank.size(), std::size_t(add)));
+        for (const auto c : by_rank) added.push_back(candidates[c]);
+      }
+    }
+    it.optimize_seconds = since(t_opt);
+    if (!added.empty()) {
+      const auto t0 = clock::now();
+      align(added);
+      for (const auto& p : added) chosen[p] = store.at(p.first, p.second).initial;
+      it.align_seconds = since(t0);
+    }
+    it.added = static_cast<index_t>(added.size());
+    it.edges = static_cast<index_t>(chosen.size());
+    it.pairs_aligned = store.size();
+    progress("optimize", std::size_t(iteration), std::size_t(options.max_iterations));
+    const bool changed = it.alternatives_changed > 0 || it.pruned > 0 || it.added > 0;
+    if (!changed) {
+      out.log.push_back(it);
+      out.converged = true;
+      break;
+    }
+    f = embed(it);
+    out.log.push_back(it);
+  }
+
+  for (const auto& [k, alt] : chosen) {
+    const auto& pa = store.at(k.first, k.second);
+    out.edges.push_back({k.first, k.second, alt,
+                         detail::consistency_score(pa.alternatives[std::size_t(alt)], f, k.first, k.second)});
+  }
+  out.fuzzy = std::move(f);
+  out.pairs_aligned = store.size();
+  out.pairs_computed = store.computed();
+  return out;
+}
+
+}  // namespace shapestruct

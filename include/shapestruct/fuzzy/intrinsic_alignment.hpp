@@ -1,0 +1,218 @@
+// SPDX-License-Identifier: MIT
+// intrinsic_aligner: blended intrinsic maps as the pairwise alignments of a collection (ch. 4.3.4, eq. 4.4-4.5).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <list>
+#include <map>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <numeric>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "shapestruct/blended/blended_matcher.hpp"
+#include "shapestruct/collection/pair_alignment.hpp"
+#include "shapestruct/collection/shape_record.hpp"
+#include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/triangle_mesh.hpp"
+#include "shapestruct/geometry/mesh_measures.hpp"
+#include "shapestruct/maps/surface_map.hpp"
+
+namespace shapestruct {
+
+/// Options of intrinsic_aligner.
+struct intrinsic_alignment_options {
+  blended_matcher_options matcher{};  ///< the blended matcher (its threads are forced to 1: pairs run in parallel)
+  double sigma_fraction = 0.3;        ///< sigma_intrinsic(S) = 0.3 sqrt(area(S)) (ch. 4.3.4)
+  index_t max_entries_per_row = 16;   ///< a(p_i, .) keeps this many largest entries per row
+  float keep_fraction = 1e-3f;        ///< and drops entries below this fraction of the row's largest
+  index_t cache_shapes = 24;          ///< prepared shapes kept in memory (each a few MB per 10k vertices)
+};
+
+namespace detail {
+
+/// c_m(p) of ch. 4.3.4 at the vertices `at`: 2 / (r + 1/r) with r the ratio of the 1-ring's area after and
+/// before the map, each area relative to its surface's total (so a global scale change is not distortion).
+inline std::vector<double> map_area_confidence(const triangle_mesh<double>& source, const triangle_mesh<double>& target,
+                                               const surface_map<double>& map, const std::vector<index_t>& at) {
+  const double As = total_area<double>(source.V, source.F), At = total_area<double>(target.V, target.F);
+  auto image = [&](index_t v) -> Eigen::Vector3d {
+    const auto& sp = map.point(v);
+    if (sp.face == no_index) return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int c = 0; c < 3; ++c) x += sp.bary[c] * target.V.row(target.F(sp.face, c)).transpose();
+    return x;
+  };
+  // 1-rings of the requested vertices only: one pass over the faces.
+  std::map<index_t, std::size_t> slot;
+  for (std::size_t i = 0; i < at.size(); ++i) slot.emplace(at[i], i);
+  std::vector<double> before(at.size(), 0.0), after(at.size(), 0.0);
+  for (index_t f = 0; f < source.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const auto it = slot.find(source.F(f, c));
+      if (it == slot.end()) continue;
+      const Eigen::Vector3d a = source.V.row(source.F(f, 0)), b = source.V.row(source.F(f, 1)),
+                            d = source.V.row(source.F(f, 2));
+      before[it->second] += 0.5 * (b - a).cross(d - a).norm() / As;
+      const Eigen::Vector3d ia = image(source.F(f, 0)), ib = image(source.F(f, 1)), id = image(source.F(f, 2));
+      const double mapped = 0.5 * (ib - ia).cross(id - ia).norm() / At;
+      after[it->second] += std::isfinite(mapped) ? mapped : 0.0;
+    }
+  std::vector<double> c(at.size(), 0.0);
+  for (std::size_t i = 0; i < at.size(); ++i)
+    if (before[i] > 0 && after[i] > 0) c[i] = 2.0 / (after[i] / before[i] + before[i] / after[i]);
+  return c;
+}
+
+/// Keeps, per row, the `keep` largest entries at least `fraction` of the row's largest (the largest always).
+inline Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t> sparsify_rows(const Eigen::MatrixXf& dense,
+                                                                                index_t keep, float fraction) {
+  Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t> s(dense.rows(), dense.cols());
+  s.reserve(dense.rows() * std::min(keep, dense.cols()));
+  std::vector<std::int32_t> order(static_cast<std::size_t>(dense.cols()));
+  for (index_t i = 0; i < dense.rows(); ++i) {
+    std::iota(order.begin(), order.end(), 0);
+    const auto n = static_cast<std::ptrdiff_t>(std::min<index_t>(keep, dense.cols()));
+    std::partial_sort(order.begin(), order.begin() + n, order.end(), [&](std::int32_t a, std::int32_t b) {
+      return dense(i, a) > dense(i, b) || (dense(i, a) == dense(i, b) && a < b);
+    });
+    const float top = dense(i, order[0]);
+    std::vector<std::int32_t> cols(order.begin(), order.begin() + n);
+    std::sort(cols.begin(), cols.end());
+    s.startVec(i);
+    for (const auto j : cols)
+      if (dense(i, j) >= fraction * top && (dense(i, j) > 0 || j == order[0])) s.insertBack(i, j) = dense(i, j);
+  }
+  s.finalize();
+  return s;
+}
+
+}  // namespace detail
+
+/// ShapeAligner of intrinsic collections: the blended matcher (ch. 3) on the two shapes, every blended map it
+/// builds (one per consistent group of conformal maps) kept as an alternative, scored by eq. 4.4-4.5:
+/// a(p_i, p_j) = c_m(p_i) exp(-d_geo(m(p_i), p_j)^2 / sigma^2) * B with B = mean_i c_m(p_i). The geodesic
+/// distance is read from the target record's sample table at the sample nearest to m(p_i), which is exact up
+/// to the sampling's covering radius (about a fifth of sigma for K = 128).
+/// Meshes come from `load(index)` (a file read, typically); prepared shapes are cached (LRU, thread-safe).
+class intrinsic_aligner {
+ public:
+  using loader = std::function<triangle_mesh<double>(index_t)>;
+
+  intrinsic_aligner(const std::vector<shape_record>& records, loader load, intrinsic_alignment_options options = {})
+      : records_(&records), load_(std::move(load)), options_(std::move(options)) {
+    options_.matcher.threads = 1;
+    options_.matcher.full_maps_for_all_groups = true;
+    options_.matcher.on_stage = {};
+    if (!(options_.sigma_fraction > 0) || options_.max_entries_per_row < 1 || options_.cache_shapes < 2)
+      throw invalid_input(input_error::bad_parameter, no_index,
+                          "intrinsic_aligner: need sigma_fraction > 0, max_entries_per_row >= 1, cache_shapes >= 2");
+  }
+
+  [[nodiscard]] const intrinsic_alignment_options& options() const noexcept { return options_; }
+
+  /// The blended match of a pair with every group's map filled (the consistent blended map needs them).
+  [[nodiscard]] blended_match_result<double> match(index_t source, index_t target) const {
+    const auto a = prepared(source);
+    const auto b = prepared(target);
+    return blended_matcher<>(options_.matcher).match(a->shape, b->shape);
+  }
+
+  /// Alternatives of eq. 4.4-4.5 from a blended match of (source, target).
+  [[nodiscard]] pair_alignment alignment_from(index_t source, index_t target,
+                                              const blended_match_result<double>& r) const {
+    const auto a = prepared(source);
+    const auto b = prepared(target);
+    const shape_record& rs = (*records_)[std::size_t(source)];
+    const shape_record& rt = (*records_)[std::size_t(target)];
+    if (rs.sample_vertex.empty() || rs.sample_vertex[0] == no_index || rt.sample_geodesics.size() == 0)
+      throw invalid_input(input_error::unsupported_topology, source,
+                          "intrinsic_aligner: shapes '" + rs.name + "' and '" + rt.name +
+                              "' need geodesic samples (closed genus-0 surfaces); use the extrinsic mode");
+    const double sigma = options_.sigma_fraction * std::sqrt(rt.area);
+    pair_alignment out;
+    out.source = source;
+    out.target = target;
+    for (std::size_t g = 0; g < r.blended.size(); ++g) {
+      const auto& map = r.blended[g].map;
+      if (map.points.empty()) continue;
+      const std::vector<double> c = detail::map_area_confidence(a->mesh, b->mesh, map, rs.sample_vertex);
+      double B = 0;
+      for (const double x : c) B += x;
+      B /= double(c.size());
+      const index_t K = rs.sample_count(), L = rt.sample_count();
+      Eigen::MatrixXf dense(K, L);
+      for (index_t i = 0; i < K; ++i) {
+        const index_t v = map.target_vertex(rs.sample_vertex[std::size_t(i)]);
+        const index_t s = v == no_index ? 0 : rt.vertex_sample[std::size_t(v)];
+        for (index_t j = 0; j < L; ++j) {
+          const double d = rt.sample_geodesics(s, j);
+          dense(i, j) = static_cast<float>(c[std::size_t(i)] * std::exp(-d * d / (sigma * sigma)) * B);
+        }
+      }
+      alignment_alternative alt;
+      alt.scores = detail::sparsify_rows(dense, options_.max_entries_per_row, options_.keep_fraction);
+      alt.global_score = B;
+      alt.parameters = {double(g)};
+      out.alternatives.push_back(std::move(alt));
+    }
+    out.initial = best_global_alternative(out.alternatives);
+    return out;
+  }
+
+  /// ShapeAligner: every blended map of the pair as an alternative, the one with the highest B first chosen.
+  [[nodiscard]] pair_alignment align(index_t source, index_t target) const {
+    return alignment_from(source, target, match(source, target));
+  }
+
+ private:
+  struct entry {
+    triangle_mesh<double> mesh;
+    blended_shape<double> shape;
+  };
+
+  std::shared_ptr<const entry> prepared(index_t k) const {
+    {
+      std::lock_guard lock(mutex_);
+      const auto it = cache_.find(k);
+      if (it != cache_.end()) {
+        lru_.remove(k);
+        lru_.push_front(k);
+        return it->second;
+      }
+    }
+    auto e = std::make_shared<entry>();
+    e->mesh = load_(k);
+    auto so = options_.matcher.shape;
+    so.threads = 1;
+    e->shape = make_blended_shape(e->mesh, so);
+    std::lock_guard lock(mutex_);
+    const auto it = cache_.find(k);
+    if (it != cache_.end()) return it->second;  // another thread prepared it meanwhile
+    cache_.emplace(k, e);
+    lru_.push_front(k);
+    while (static_cast<index_t>(lru_.size()) > options_.cache_shapes) {
+      cache_.erase(lru_.back());
+      lru_.pop_back();
+    }
+    return e;
+  }
+
+  const std::vector<shape_record>* records_;
+  loader load_;
+  intrinsic_alignment_options options_;
+  mutable std::mutex mutex_;
+  mutable std::map<index_t, std::shared_ptr<const entry>> cache_;
+  mutable std::list<index_t> lru_;
+};
+
+}  // namespace shapestruct
