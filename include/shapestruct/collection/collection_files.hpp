@@ -121,12 +121,12 @@ inline void write_shape_record(const std::filesystem::path& path, const shape_re
   w.put(r.area);
   w.put<std::uint8_t>(r.closed_genus0 ? 1 : 0);
   w.put<std::int64_t>(r.vertex_count);
-  write_file_atomically(path, w.bytes());
+  io_detail::write_file_atomically(path, w.bytes());
 }
 
 /// Reads a shape record written by write_shape_record. \throws io_error (cannot_open, syntax for a damaged file).
 [[nodiscard]] inline shape_record read_shape_record(const std::filesystem::path& path) {
-  const std::string bytes = read_file_bytes(path);
+  const std::string bytes = io_detail::read_file_bytes(path);
   detail::binary_reader rd(bytes, path.string());
   if (rd.get<std::uint32_t>() != detail::record_magic) rd.fail("not a shape record");
   if (rd.get<std::uint32_t>() != detail::collection_file_version) rd.fail("written by another version");
@@ -167,13 +167,13 @@ inline void write_pair_alignment(const std::filesystem::path& path, const pair_a
     w.put_array(s.innerIndexPtr(), static_cast<std::size_t>(s.nonZeros()));
     w.put_array(s.valuePtr(), static_cast<std::size_t>(s.nonZeros()));
   }
-  write_file_atomically(path, w.bytes());
+  io_detail::write_file_atomically(path, w.bytes());
 }
 
 /// Reads a pairwise alignment written by write_pair_alignment.
 /// \throws io_error (cannot_open, syntax for a damaged file).
 [[nodiscard]] inline pair_alignment read_pair_alignment(const std::filesystem::path& path) {
-  const std::string bytes = read_file_bytes(path);
+  const std::string bytes = io_detail::read_file_bytes(path);
   detail::binary_reader rd(bytes, path.string());
   if (rd.get<std::uint32_t>() != detail::alignment_magic) rd.fail("not a pairwise alignment");
   if (rd.get<std::uint32_t>() != detail::collection_file_version) rd.fail("written by another version");

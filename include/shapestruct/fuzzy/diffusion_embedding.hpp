@@ -131,7 +131,7 @@ template <class Solver = lanczos_embedding_solver>
   out.coordinates.resize(n, dims);
   for (index_t c = 0; c < dims; ++c) {
     const double w = std::pow(std::abs(eig.values[c + 1]), options.time);
-    out.coordinates.col(c) = (w * eig.vectors.col(c + 1).cwiseProduct(C.inverse_sqrt_degrees())).cast<float>();
+    out.coordinates.col(c) = (w * eig.vectors.col(c + 1).cwiseProduct(C.inverse_sqrt_degrees())).template cast<float>();
   }
   // Fix each eigenvector's arbitrary sign (largest |entry| positive) so that files are reproducible.
   for (index_t c = 0; c < dims; ++c) {

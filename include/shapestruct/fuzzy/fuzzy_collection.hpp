@@ -240,9 +240,9 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
     const index_t add = it.pruned;
     std::vector<key> added;
     if (add > 0) {
-      alignment_graph pruned_graph;
-      pruned_graph.nodes = N;
-      for (const auto& [k, alt] : chosen) pruned_graph.edges.push_back(k);
+      std::vector<std::pair<index_t, index_t>> kept;
+      for (const auto& [k, alt] : chosen) kept.push_back(k);
+      const alignment_graph pruned_graph = make_alignment_graph(N, std::move(kept));
       std::vector<key> far;
       for (index_t s = 0; s < N; ++s) {
         const auto hops = shortest_path_lengths(pruned_graph, s);

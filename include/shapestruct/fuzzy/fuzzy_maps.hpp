@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: MIT
+// fuzzy_maps: dense vertex maps between two shapes of a collection from its fuzzy correspondence (ch. 4.4).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "shapestruct/collection/shape_record.hpp"
+#include "shapestruct/core/errors.hpp"
+#include "shapestruct/fuzzy/fuzzy_collection.hpp"
+#include "shapestruct/fuzzy/fuzzy_correspondence.hpp"
+#include "shapestruct/fuzzy/intrinsic_alignment.hpp"
+#include "shapestruct/knn/knn_index.hpp"
+
+namespace shapestruct {
+
+/// The best-fuzzy-correspondence map of ch. 4.4.2: every vertex of shape a goes where its nearest sample's
+/// closest sample of shape b in the embedding lies (nearest-neighbour interpolation of a K-sample map).
+/// The image of a sample of b is its vertex (geodesic samples) or, for samples drawn on the surface of a soup,
+/// the vertex of `b_vertices` nearest to it.
+/// \param f the collection's fuzzy correspondence  \param a, b the two shapes' indices in the collection
+/// \param b_vertices (#V_b x 3) b's vertices; needed only when b's samples are not vertices
+/// \returns (#V_a) target vertex per source vertex (the benchmark's dense .map)
+/// \throws invalid_input (bad_parameter) for shapes out of range, (size_mismatch) when b_vertices is needed
+///         and missing.
+[[nodiscard]] inline std::vector<index_t> best_fuzzy_vertex_map(const fuzzy_correspondence& f,
+                                                                const std::vector<shape_record>& records, index_t a,
+                                                                index_t b,
+                                                                const Eigen::Matrix<double, Eigen::Dynamic, 3>& b_vertices = {}) {
+  const index_t N = f.shapes();
+  if (a < 0 || a >= N || b < 0 || b >= N || static_cast<index_t>(records.size()) != N)
+    throw invalid_input(input_error::bad_parameter, no_index,
+                        "best_fuzzy_vertex_map: shapes " + std::to_string(a) + ", " + std::to_string(b) +
+                            " are not both in a collection of " + std::to_string(N));
+  const shape_record& ra = records[std::size_t(a)];
+  const shape_record& rb = records[std::size_t(b)];
+  const std::vector<index_t> match = f.best_matches(a, b);
+  std::vector<index_t> image(match.size());
+  const bool vertices = !rb.sample_vertex.empty() && rb.sample_vertex[0] != no_index;
+  if (!vertices && b_vertices.rows() == 0)
+    throw invalid_input(input_error::size_mismatch, b,
+                        "best_fuzzy_vertex_map: shape '" + rb.name +
+                            "' was sampled on its surface; pass its vertices to map onto them");
+  if (vertices) {
+    for (std::size_t i = 0; i < match.size(); ++i) image[i] = rb.sample_vertex[std::size_t(match[i])];
+  } else {
+    const knn_index<double, 3> index(b_vertices);
+    for (std::size_t i = 0; i < match.size(); ++i)
+      image[i] = index.nearest(rb.samples.row(match[i]).transpose()).index;
+  }
+  std::vector<index_t> out(ra.vertex_sample.size());
+  for (std::size_t v = 0; v < out.size(); ++v) out[v] = image[std::size_t(ra.vertex_sample[v])];
+  return out;
+}
+
+/// The consistent blended map of ch. 4.4.5: of the blended maps the blended matcher builds for (a, b), the one
+/// whose alignment scores agree best with f (the consistency score of eq. 4.10).
+struct consistent_blended_map {
+  surface_map<double> map;        ///< source vertices of a -> surface points of b
+  index_t group = no_index;       ///< index of the chosen blended map in the match's `blended`
+  index_t pairwise_group = no_index;  ///< the group the blended matcher alone selects
+  std::vector<double> consistency;    ///< score_f of every group (eq. 4.10)
+};
+
+/// Computes the consistent blended map of shapes a -> b. \throws as intrinsic_aligner::match.
+[[nodiscard]] inline consistent_blended_map make_consistent_blended_map(const intrinsic_aligner& aligner,
+                                                                        const fuzzy_correspondence& f, index_t a,
+                                                                        index_t b) {
+  const blended_match_result<double> r = aligner.match(a, b);
+  const pair_alignment alts = aligner.alignment_from(a, b, r);
+  consistent_blended_map out;
+  out.pairwise_group = r.selected;
+  double best = -1;
+  for (const auto& alt : alts.alternatives) {
+    const double s = detail::consistency_score(alt, f, a, b);
+    out.consistency.push_back(s);
+    const auto g = static_cast<index_t>(alt.parameters.at(0));
+    if (s > best) best = s, out.group = g;
+  }
+  if (out.group == no_index) out.group = r.selected;
+  out.map = r.blended[std::size_t(out.group)].map;
+  return out;
+}
+
+}  // namespace shapestruct

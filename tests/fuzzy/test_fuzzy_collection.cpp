@@ -1,0 +1,253 @@
+// SPDX-License-Identifier: MIT
+// Tests of the fuzzy-correspondence core: the correspondence matrix, the diffusion embedding, f, and Algorithm 1.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <set>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+#include "shapestruct/fuzzy/correspondence_matrix.hpp"
+#include "shapestruct/fuzzy/diffusion_embedding.hpp"
+#include "shapestruct/fuzzy/fuzzy_collection.hpp"
+#include "shapestruct/fuzzy/fuzzy_correspondence.hpp"
+
+namespace ss = shapestruct;
+using sparse_scores = Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>;
+
+namespace {
+
+/// Scores that send sample i of the source to sample perm[i] of the target (and, more weakly, to its two
+/// neighbours in index order), scaled by `global`.
+sparse_scores permutation_scores(const std::vector<int>& perm, float global) {
+  const auto K = static_cast<ss::index_t>(perm.size());
+  Eigen::MatrixXf dense = Eigen::MatrixXf::Zero(K, K);
+  for (ss::index_t i = 0; i < K; ++i) {
+    const int j = perm[std::size_t(i)];
+    dense(i, j) = global;
+    dense(i, (j + 1) % K) = 0.2f * global;
+    dense(i, (j + K - 1) % K) = 0.2f * global;
+  }
+  return dense.sparseView();
+}
+
+std::vector<int> identity(int K) {
+  std::vector<int> p(static_cast<std::size_t>(K));
+  for (int i = 0; i < K; ++i) p[std::size_t(i)] = i;
+  return p;
+}
+
+std::vector<int> reversed(int K) {
+  std::vector<int> p(static_cast<std::size_t>(K));
+  for (int i = 0; i < K; ++i) p[std::size_t(i)] = K - 1 - i;
+  return p;
+}
+
+Eigen::MatrixXd dense_of(const ss::correspondence_matrix& C) {
+  const ss::index_t n = C.rows();
+  Eigen::MatrixXd M(n, n);
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
+  for (ss::index_t j = 0; j < n; ++j) {
+    e[j] = 1;
+    C.perform_op(e.data(), M.col(j).data());
+    e[j] = 0;
+  }
+  return M;
+}
+
+/// A collection whose samples correspond by index; every pair aligns exactly (alternative 0, B = 0.9) and
+/// also offers the reversed correspondence (alternative 1, B = 0.5), except the planted pair, whose initial
+/// alternative is the reversed one (B = 0.95) with the true one as alternative 1 (B = 0.6).
+struct planted_aligner {
+  int K;
+  std::pair<ss::index_t, ss::index_t> planted;
+  ss::pair_alignment align(ss::index_t a, ss::index_t b) const {
+    ss::pair_alignment out;
+    const bool wrong = std::pair{std::min(a, b), std::max(a, b)} == planted;
+    ss::alignment_alternative right, flip;
+    right.scores = permutation_scores(identity(K), wrong ? 0.6f : 0.9f);
+    right.global_score = wrong ? 0.6 : 0.9;
+    flip.scores = permutation_scores(reversed(K), wrong ? 0.95f : 0.5f);
+    flip.global_score = wrong ? 0.95 : 0.5;
+    out.alternatives = {right, flip};
+    out.initial = ss::best_global_alternative(out.alternatives);
+    return out;
+  }
+};
+
+std::vector<ss::shape_record> planted_records(int N, int K) {
+  std::vector<ss::shape_record> r(static_cast<std::size_t>(N));
+  std::mt19937_64 rng(3);
+  for (int k = 0; k < N; ++k) {
+    r[std::size_t(k)].name = "shape" + std::to_string(k);
+    r[std::size_t(k)].samples = Eigen::Matrix<double, Eigen::Dynamic, 3>::Zero(K, 3);
+    // Descriptors on a line: the MST is the path 0-1-2-..., the planted edge is one of its links.
+    r[std::size_t(k)].descriptor = Eigen::VectorXd::Constant(4, double(k) + 1e-3 * double(rng() % 100));
+  }
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("correspondence matrix: C is row-stochastic and W symmetric") {
+  const int K = 6;
+  const auto a01 = permutation_scores(identity(K), 0.7f);
+  const auto a12 = permutation_scores(reversed(K), 0.4f);
+  const std::vector<ss::index_t> counts{K, K, K};
+  const std::vector<ss::correspondence_edge> edges{{0, 1, &a01}, {1, 2, &a12}};
+  const ss::correspondence_matrix C(counts, edges, 1);
+  const Eigen::MatrixXd A = dense_of(C);
+  CHECK((A - A.transpose()).cwiseAbs().maxCoeff() < 1e-12);
+  // The random walk D^-1 W = D^-1/2 A D^1/2 has rows summing to one.
+  const Eigen::VectorXd s = C.degrees().cwiseSqrt();
+  const Eigen::MatrixXd P = C.inverse_sqrt_degrees().asDiagonal() * A * s.asDiagonal();
+  for (ss::index_t i = 0; i < P.rows(); ++i) CHECK(P.row(i).sum() == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(P.minCoeff() >= 0.0);
+}
+
+TEST_CASE("correspondence matrix: edges naming missing shapes or wrong block sizes are invalid_input") {
+  const auto a = permutation_scores(identity(4), 1.0f);
+  const std::vector<ss::index_t> counts{4, 4};
+  const std::vector<ss::correspondence_edge> out_of_range{{0, 2, &a}};
+  CHECK_THROWS_AS(ss::correspondence_matrix(counts, out_of_range), ss::invalid_input);
+  const std::vector<ss::index_t> wrong{4, 5};
+  const std::vector<ss::correspondence_edge> e{{0, 1, &a}};
+  CHECK_THROWS_AS(ss::correspondence_matrix(wrong, e), ss::invalid_input);
+  sparse_scores negative = a;
+  negative.valuePtr()[0] = -1.0f;
+  const std::vector<ss::correspondence_edge> n{{0, 1, &negative}};
+  CHECK_THROWS_AS(ss::correspondence_matrix(counts, n), ss::invalid_input);
+}
+
+TEST_CASE("diffusion embedding: Lanczos agrees with a dense eigen-decomposition") {
+  // 6 shapes of 40 samples on a cycle of exact and noisy alignments: n = 240.
+  const int K = 40, N = 6;
+  std::mt19937_64 rng(7);
+  std::vector<sparse_scores> blocks;
+  std::vector<ss::correspondence_edge> edges;
+  blocks.reserve(std::size_t(N));
+  for (int k = 0; k < N; ++k) {
+    Eigen::MatrixXf d = Eigen::MatrixXf::Zero(K, K);
+    for (int i = 0; i < K; ++i) {
+      d(i, i) = 1.0f;
+      d(i, (i + 1) % K) = 0.3f + 0.01f * float(rng() % 10);
+      d(i, (i + 3) % K) = 0.05f;
+    }
+    blocks.push_back(d.sparseView());
+  }
+  for (int k = 0; k < N; ++k) edges.push_back({k, (k + 1) % N, &blocks[std::size_t(k)]});
+  const std::vector<ss::index_t> counts(std::size_t(N), K);
+  const ss::correspondence_matrix C(counts, edges, 2);
+  const ss::diffusion_embedding_options o{.time = 10, .dimensions = 12};
+  const auto lanczos = ss::embed_diffusion(C, o, ss::lanczos_embedding_solver{});
+  const auto dense = ss::embed_diffusion(C, o, ss::dense_embedding_solver{});
+  REQUIRE(lanczos.info == ss::status::ok);
+  CHECK(lanczos.trivial_eigenvalue == doctest::Approx(1.0).epsilon(1e-9));
+  CHECK((lanczos.eigenvalues - dense.eigenvalues).cwiseAbs().maxCoeff() < 1e-7);
+  // Diffusion distances do not depend on the eigenvectors' signs or on rotations within an eigenspace.
+  double worst = 0, scale = 0;
+  for (ss::index_t p = 0; p < C.rows(); p += 7)
+    for (ss::index_t q = 0; q < C.rows(); q += 5) {
+      worst = std::max(worst, std::abs(lanczos.squared_distance(p, q) - dense.squared_distance(p, q)));
+      scale = std::max(scale, dense.squared_distance(p, q));
+    }
+  CHECK(worst < 1e-4 * scale);
+}
+
+TEST_CASE("diffusion embedding: corresponding samples coincide and others stay apart") {
+  const int K = 16;
+  const auto a = permutation_scores(identity(K), 1.0f);
+  const std::vector<ss::index_t> counts{K, K, K};
+  const std::vector<ss::correspondence_edge> edges{{0, 1, &a}, {1, 2, &a}, {0, 2, &a}};
+  const ss::correspondence_matrix C(counts, edges, 1);
+  const auto e = ss::embed_diffusion(C, {.time = 10, .dimensions = 20}, ss::dense_embedding_solver{});
+  const auto f = ss::make_fuzzy_correspondence(e);
+  for (ss::index_t i = 0; i < K; ++i) {
+    CHECK(f.best_match(f.point(0, i), 1) == i);
+    CHECK(f.best_match(f.point(2, i), 0) == i);
+    CHECK(f.value(f.point(0, i), f.point(1, i)) > 0.9);
+  }
+  // tau is the 15 % quantile of a point's distances to the other shapes' points: 15 % of 32 is 4.8, so the
+  // 5th nearest; f there is exp(-1).
+  const ss::index_t p = f.point(0, 3);
+  std::vector<double> d;
+  for (ss::index_t q = f.point(1, 0); q < f.points(); ++q) d.push_back(std::sqrt(e.squared_distance(p, q)));
+  std::sort(d.begin(), d.end());
+  CHECK(double(f.tau()[p]) == doctest::Approx(d[4]).epsilon(1e-4));
+}
+
+TEST_CASE("fuzzy correspondence options out of range are invalid_input") {
+  const auto a = permutation_scores(identity(8), 1.0f);
+  const std::vector<ss::index_t> counts{8, 8};
+  const std::vector<ss::correspondence_edge> edges{{0, 1, &a}};
+  const ss::correspondence_matrix C(counts, edges, 1);
+  CHECK_THROWS_AS((void)ss::embed_diffusion(C, {.time = -1}), ss::invalid_input);
+  CHECK_THROWS_AS((void)ss::embed_diffusion(C, {.dimensions = 0}), ss::invalid_input);
+  const auto e = ss::embed_diffusion(C, {.dimensions = 4}, ss::dense_embedding_solver{});
+  CHECK_THROWS_AS((void)ss::make_fuzzy_correspondence(e, {.tau_fraction = 0}), ss::invalid_input);
+  CHECK_THROWS_AS((void)ss::make_fuzzy_correspondence(e, {.cutoff = 0}), ss::invalid_input);
+}
+
+TEST_CASE("graph optimisation repairs a deliberately wrong edge planted in a small collection") {
+  const int N = 12, K = 10;
+  const auto records = planted_records(N, K);
+  const planted_aligner aligner{K, {4, 5}};
+  ss::fuzzy_collection_options o;
+  o.embedding.dimensions = 16;
+  o.threads = 1;
+  const auto r = ss::compute_fuzzy_correspondences(records, aligner, o, ss::dense_embedding_solver{});
+  REQUIRE(r.log.size() >= 2);
+  // The wrong edge entered the initial graph with its reversed alternative (highest B) ...
+  CHECK(r.log.front().edges >= N - 1);
+  // ... and the optimisation switched it to the consistent one or pruned it.
+  bool planted_wrong = false;
+  for (const auto& e : r.edges)
+    if (e.source == 4 && e.target == 5) planted_wrong = e.alternative != 0;
+  CHECK_FALSE(planted_wrong);
+  CHECK(r.log[1].alternatives_changed >= 1);
+  // Afterwards every sample maps to its own index on every other shape.
+  for (ss::index_t k = 0; k < N; ++k)
+    for (ss::index_t l = 0; l < N; ++l) {
+      if (k == l) continue;
+      const auto m = r.fuzzy.best_matches(k, l);
+      for (ss::index_t i = 0; i < K; ++i) CHECK(m[std::size_t(i)] == i);
+    }
+}
+
+TEST_CASE("fuzzy collection: one and two threads give identical results, and a resumed run aligns nothing") {
+  const int N = 10, K = 8;
+  const auto records = planted_records(N, K);
+  const planted_aligner aligner{K, {2, 3}};
+  const auto dir = std::filesystem::temp_directory_path() / "shapestruct_test_fuzzy_resume";
+  std::filesystem::remove_all(dir);
+  ss::fuzzy_collection_options o;
+  o.embedding.dimensions = 12;
+  o.cache_folder = dir;
+  o.threads = 1;
+  const auto one = ss::compute_fuzzy_correspondences(records, aligner, o);
+  o.threads = 2;
+  const auto two = ss::compute_fuzzy_correspondences(records, aligner, o);
+  CHECK(one.pairs_computed == one.pairs_aligned);
+  CHECK(two.pairs_computed == 0);  // every alignment came from the cache
+  REQUIRE(one.edges.size() == two.edges.size());
+  for (std::size_t e = 0; e < one.edges.size(); ++e) {
+    CHECK(one.edges[e].source == two.edges[e].source);
+    CHECK(one.edges[e].target == two.edges[e].target);
+    CHECK(one.edges[e].alternative == two.edges[e].alternative);
+  }
+  CHECK((one.fuzzy.embedding().coordinates - two.fuzzy.embedding().coordinates).cwiseAbs().maxCoeff() == 0.0f);
+  CHECK((one.fuzzy.tau() - two.fuzzy.tau()).cwiseAbs().maxCoeff() == 0.0f);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("fuzzy collection: fewer than two shapes and bad options are invalid_input") {
+  const planted_aligner aligner{4, {0, 1}};
+  CHECK_THROWS_AS((void)ss::compute_fuzzy_correspondences(planted_records(1, 4), aligner), ss::invalid_input);
+  ss::fuzzy_collection_options o;
+  o.prune_fraction = 2;
+  CHECK_THROWS_AS((void)ss::compute_fuzzy_correspondences(planted_records(3, 4), aligner, o), ss::invalid_input);
+}
