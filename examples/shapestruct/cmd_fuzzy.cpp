@@ -1,0 +1,284 @@
+// SPDX-License-Identifier: MIT
+// shapestruct fuzzy / fuzzy-map: fuzzy correspondences of a folder of shapes (dissertation chapter 4) and the
+// maps between two of its shapes.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "shapestruct/fuzzy/collection_records.hpp"
+#include "shapestruct/fuzzy/extrinsic_alignment.hpp"
+#include "shapestruct/fuzzy/fuzzy_collection.hpp"
+#include "shapestruct/fuzzy/fuzzy_files.hpp"
+#include "shapestruct/fuzzy/fuzzy_maps.hpp"
+#include "shapestruct/fuzzy/intrinsic_alignment.hpp"
+#include "shapestruct/io/json.hpp"
+#include "shapestruct/io/read_mesh.hpp"
+#include "shapestruct/io/vertex_map_file.hpp"
+#include "shapestruct/templates/collection_runner.hpp"
+
+namespace {
+
+using namespace shapestruct;
+namespace fs = std::filesystem;
+using steady = std::chrono::steady_clock;
+
+const char* fuzzy_usage =
+    "usage: shapestruct fuzzy DIR -o OUT [--mode extrinsic|intrinsic|auto] [--samples K] [--threads N]\n"
+    "                         [--edges-per-shape M] [--up 0|1|2] [--quiet]\n"
+    "Fuzzy correspondences of every shape file (.off .obj .ply .stl) in DIR (chapter 4): K farthest-point samples\n"
+    "per shape, an initial alignment graph from spherical-harmonic descriptors, pairwise alignments along its\n"
+    "edges (extrinsic: upright ICP; intrinsic: blended intrinsic maps), the diffusion embedding of the\n"
+    "correspondence matrix and the graph optimisation of Algorithm 1. auto (the default) is intrinsic when every\n"
+    "shape is a closed genus-0 surface, else extrinsic. OUT holds (docs/fuzzy.md): collection.json, samples.txt,\n"
+    "graph.txt, iterations.tsv, fuzzy.bin, and the resume caches records/ and pairs/: run the same command again\n"
+    "after an interruption and finished work is not redone. Unreadable, empty or non-finite shapes are reported\n"
+    "and skipped.\n";
+
+const char* fuzzy_map_usage =
+    "usage: shapestruct fuzzy-map OUT A B -o A_B.map [--consistent-blended] [--threads N]\n"
+    "Dense vertex map from shape A to shape B (names as in OUT/collection.json, i.e. file stems) of a collection\n"
+    "computed by `shapestruct fuzzy`: by default the best fuzzy correspondence (each vertex goes where its nearest\n"
+    "sample's closest sample in the embedding lies); --consistent-blended (intrinsic collections) the blended map\n"
+    "of the pair most consistent with the fuzzy correspondences. One 0-based target vertex id per line.\n";
+
+/// One progress line per stage, rewritten in place: done / total, percent, time left.
+class progress_line {
+ public:
+  explicit progress_line(bool quiet) : quiet_(quiet) {}
+  void update(const std::string& stage, std::size_t done, std::size_t total) {
+    if (quiet_ || total == 0) return;
+    const auto now = steady::now();
+    if (stage != stage_) {
+      if (!stage_.empty()) std::fprintf(stderr, "\n");
+      stage_ = stage;
+      start_ = now;
+    }
+    const double spent = std::chrono::duration<double>(now - start_).count();
+    const double left = done > 0 ? spent * double(total - done) / double(done) : 0.0;
+    const int width = 30;
+    const int filled = static_cast<int>(double(width) * double(done) / double(total));
+    std::fprintf(stderr, "\r%-10s [%s%s] %zu/%zu %5.1f%%  %6.1f s spent, %6.1f s left ", stage.c_str(),
+                 std::string(std::size_t(filled), '#').c_str(), std::string(std::size_t(width - filled), '.').c_str(),
+                 done, total, 100.0 * double(done) / double(total), spent, left);
+    std::fflush(stderr);
+  }
+  void finish() {
+    if (!quiet_ && !stage_.empty()) std::fprintf(stderr, "\n");
+    stage_.clear();
+  }
+
+ private:
+  bool quiet_;
+  std::string stage_;
+  steady::time_point start_;
+};
+
+double since(steady::time_point t) { return std::chrono::duration<double>(steady::now() - t).count(); }
+
+int run_fuzzy(const std::vector<std::string>& args) {
+  cli::arg_reader reader(args);
+  const std::string out = reader.option({"-o", "--output"});
+  const std::string mode = reader.option({"--mode"}, "auto");
+  const long long samples = reader.integer({"--samples"}, 128);
+  const long long threads = reader.integer({"--threads"}, 0);
+  const long long edges_per_shape = reader.integer({"--edges-per-shape"}, 5);
+  const long long up = reader.integer({"--up"}, 1);
+  const bool quiet = reader.flag("--quiet");
+  const auto pos = reader.positionals();
+  if (pos.size() != 1) throw cli::usage_error("expected one input folder DIR");
+  if (out.empty()) throw cli::usage_error("-o OUT is required");
+  if (mode != "auto" && mode != "extrinsic" && mode != "intrinsic")
+    throw cli::usage_error("--mode must be extrinsic, intrinsic or auto, got '" + mode + "'");
+  if (samples < 3 || threads < 0 || edges_per_shape < 1 || up < 0 || up > 2)
+    throw cli::usage_error("--samples >= 3, --threads >= 0, --edges-per-shape >= 1, --up 0|1|2");
+  const auto files = list_shape_files(pos[0]);
+  if (files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + pos[0]);
+  const fs::path out_dir(out);
+  fs::create_directories(out_dir);
+  progress_line bar(quiet);
+  const auto t_start = steady::now();
+
+  // 1. Records (cached in OUT/records): intrinsic collections sample geodesically, extrinsic ones on the surface.
+  collection_records_options ro;
+  ro.threads = static_cast<int>(threads);
+  ro.record.samples = static_cast<index_t>(samples);
+  ro.record.metric = mode == "extrinsic" ? sample_metric::euclidean : sample_metric::automatic;
+  ro.cache_folder = out_dir / "records";
+  ro.on_progress = [&](std::size_t d, std::size_t t) { bar.update("records", d, t); };
+  auto col = make_collection_records(files, ro);
+  bar.finish();
+  const double t_records = since(t_start);
+  for (const auto& s : col.skipped) std::fprintf(stderr, "fuzzy: skipped %s: %s\n", s.file.string().c_str(), s.reason.c_str());
+  bool all_genus0 = !col.records.empty();
+  for (const auto& r : col.records) all_genus0 = all_genus0 && r.closed_genus0;
+  const bool intrinsic = mode == "intrinsic" || (mode == "auto" && all_genus0);
+  if (intrinsic) {
+    // Intrinsic alignment needs closed genus-0 surfaces: the others are left out, by name.
+    std::vector<shape_record> keep;
+    std::vector<fs::path> keep_files;
+    for (std::size_t i = 0; i < col.records.size(); ++i)
+      if (col.records[i].closed_genus0 && !col.records[i].sample_vertex.empty() && col.records[i].sample_vertex[0] != no_index) {
+        keep.push_back(std::move(col.records[i]));
+        keep_files.push_back(col.files[i]);
+      } else {
+        col.skipped.push_back({col.files[i], "not a closed genus-0 surface (intrinsic mode); use --mode extrinsic"});
+        std::fprintf(stderr, "fuzzy: left out %s: not a closed genus-0 surface (intrinsic mode needs one; "
+                     "--mode extrinsic keeps it)\n", col.files[i].string().c_str());
+      }
+    col.records = std::move(keep);
+    col.files = std::move(keep_files);
+  }
+  if (col.records.size() < 2) {
+    std::fprintf(stderr, "fuzzy: fewer than two usable shapes in %s; nothing to correspond\n", pos[0].c_str());
+    return 1;
+  }
+  if (!quiet)
+    std::fprintf(stderr, "fuzzy: %zu shapes, %s mode, %lld samples each (records %.1f s)\n", col.records.size(),
+                 intrinsic ? "intrinsic" : "extrinsic", samples, t_records);
+
+  // 2. The pipeline, with the pairwise alignments cached in OUT/pairs.
+  fuzzy_collection_options fo;
+  fo.threads = static_cast<int>(threads);
+  fo.graph.edges_per_shape = static_cast<index_t>(edges_per_shape);
+  fo.cache_folder = out_dir / "pairs";
+  fo.on_progress = [&](const std::string& stage, std::size_t d, std::size_t t) { bar.update(stage, d, t); };
+  const auto t_fuzzy = steady::now();
+  fuzzy_collection_result r;
+  if (intrinsic) {
+    const auto& f = col.files;
+    intrinsic_aligner aligner(col.records, [&f](index_t k) { return read_mesh(f[std::size_t(k)]).mesh; });
+    r = compute_fuzzy_correspondences(col.records, aligner, fo);
+  } else {
+    extrinsic_alignment_options eo;
+    eo.up_axis = static_cast<int>(up);
+    const extrinsic_aligner aligner(col.records, eo);
+    r = compute_fuzzy_correspondences(col.records, aligner, fo);
+  }
+  bar.finish();
+  const double seconds_fuzzy = since(t_fuzzy);
+
+  // 3. Outputs.
+  write_fuzzy_correspondence(out_dir / "fuzzy.bin", r.fuzzy);
+  {
+    std::string s = "# shape sample x y z vertex  (vertex -1: a surface point of a soup)\n";
+    char line[256];
+    for (std::size_t k = 0; k < col.records.size(); ++k) {
+      const auto& rec = col.records[k];
+      for (index_t i = 0; i < rec.sample_count(); ++i) {
+        std::snprintf(line, sizeof line, "%s %ld %.9g %.9g %.9g %ld\n", rec.name.c_str(), long(i), rec.samples(i, 0),
+                      rec.samples(i, 1), rec.samples(i, 2), long(rec.sample_vertex[std::size_t(i)]));
+        s += line;
+      }
+    }
+    io_detail::write_file_atomically(out_dir / "samples.txt", s);
+  }
+  {
+    std::string s = "# source target alternative alternatives consistency global_score (the final alignment graph)\n";
+    char line[512];
+    for (const auto& e : r.edges) {
+      const auto file = out_dir / "pairs" / (col.records[std::size_t(e.source)].name + "__" + col.records[std::size_t(e.target)].name + ".align");
+      const auto pa = read_pair_alignment(file);
+      std::snprintf(line, sizeof line, "%s %s %ld %zu %.6g %.6g\n", col.records[std::size_t(e.source)].name.c_str(),
+                    col.records[std::size_t(e.target)].name.c_str(), long(e.alternative), pa.alternatives.size(),
+                    e.consistency, pa.alternatives[std::size_t(e.alternative)].global_score);
+      s += line;
+    }
+    io_detail::write_file_atomically(out_dir / "graph.txt", s);
+  }
+  {
+    std::string s = "iteration\tedges\tswitched\tpruned\tadded\treconnected\tpairs_aligned\tmean_consistency\talign_s\tembed_s\toptimize_s\tembedding_status\n";
+    for (const auto& it : r.log)
+      s += std::to_string(it.iteration) + "\t" + std::to_string(it.edges) + "\t" + std::to_string(it.alternatives_changed) +
+           "\t" + std::to_string(it.pruned) + "\t" + std::to_string(it.added) + "\t" + std::to_string(it.reconnected) +
+           "\t" + std::to_string(it.pairs_aligned) + "\t" + std::to_string(it.mean_consistency) + "\t" +
+           std::to_string(it.align_seconds) + "\t" + std::to_string(it.embed_seconds) + "\t" +
+           std::to_string(it.optimize_seconds) + "\t" + to_string(it.embedding_info) + "\n";
+    io_detail::write_file_atomically(out_dir / "iterations.tsv", s);
+  }
+  json_value::array shapes, skipped;
+  for (std::size_t k = 0; k < col.records.size(); ++k)
+    shapes.push_back(json_value(json_value::object{{"name", col.records[k].name},
+                                                   {"file", fs::absolute(col.files[k]).string()},
+                                                   {"vertices", static_cast<long long>(col.records[k].vertex_count)},
+                                                   {"closed_genus0", col.records[k].closed_genus0}}));
+  for (const auto& s : col.skipped)
+    skipped.push_back(json_value(json_value::object{{"file", s.file.string()}, {"reason", s.reason}}));
+  const std::size_t N = col.records.size();
+  const json_value manifest(json_value::object{
+      {"mode", intrinsic ? "intrinsic" : "extrinsic"},
+      {"samples", static_cast<long long>(samples)},
+      {"shapes", shapes},
+      {"skipped", skipped},
+      {"pairs_aligned", static_cast<long long>(r.pairs_aligned)},
+      {"pairs_total", static_cast<long long>(N * (N - 1) / 2)},
+      {"iterations", static_cast<long long>(r.log.size() - 1)},
+      {"converged", r.converged},
+      {"seconds", json_value(json_value::object{{"records", t_records}, {"fuzzy", seconds_fuzzy}, {"total", since(t_start)}})}});
+  write_json((out_dir / "collection.json").string(), manifest);
+  if (!quiet)
+    std::fprintf(stderr,
+                 "fuzzy: %zu shapes, %zu of %zu pairs aligned (%.1f %%), %zu iterations%s, %.1f s; wrote %s\n", N,
+                 r.pairs_aligned, N * (N - 1) / 2, 100.0 * double(r.pairs_aligned) / double(N * (N - 1) / 2),
+                 r.log.size() - 1, r.converged ? " (converged)" : "", since(t_start), out_dir.string().c_str());
+  return 0;
+}
+
+int run_fuzzy_map(const std::vector<std::string>& args) {
+  cli::arg_reader reader(args);
+  const std::string out = reader.option({"-o", "--output"});
+  const bool consistent = reader.flag("--consistent-blended");
+  const long long threads = reader.integer({"--threads"}, 0);
+  const auto pos = reader.positionals();
+  if (pos.size() != 3) throw cli::usage_error("expected OUT A B");
+  if (out.empty()) throw cli::usage_error("-o A_B.map is required");
+  if (threads < 0) throw cli::usage_error("--threads must be >= 0");
+  const fs::path dir(pos[0]);
+  for (const char* needed : {"collection.json", "fuzzy.bin"})
+    if (!fs::exists(dir / needed))
+      throw cli::usage_error(std::string("'") + pos[0] + "' is not the output of `shapestruct fuzzy`: " + needed + " is missing");
+  const json_value manifest = read_json((dir / "collection.json").string());
+  std::vector<shape_record> records;
+  std::vector<fs::path> files;
+  std::map<std::string, index_t> index_of;
+  for (const auto& s : manifest.find("shapes")->as_array()) {
+    const std::string name = s.find("name")->as_string();
+    index_of[name] = static_cast<index_t>(records.size());
+    records.push_back(read_shape_record(dir / "records" / (name + ".rec")));
+    files.emplace_back(s.find("file")->as_string());
+  }
+  for (const auto& n : {pos[1], pos[2]})
+    if (!index_of.count(n)) throw cli::usage_error("shape '" + n + "' is not in the collection (see " + (dir / "collection.json").string() + ")");
+  const index_t a = index_of[pos[1]], b = index_of[pos[2]];
+  const fuzzy_correspondence f = read_fuzzy_correspondence(dir / "fuzzy.bin");
+  if (f.shapes() != static_cast<index_t>(records.size()))
+    throw io_error(file_error::bad_value, (dir / "fuzzy.bin").string(), 0, 0,
+                   "holds " + std::to_string(f.shapes()) + " shapes, collection.json " + std::to_string(records.size()));
+  std::vector<index_t> map;
+  if (consistent) {
+    if (manifest.find("mode")->as_string() != "intrinsic")
+      throw cli::usage_error("--consistent-blended needs an intrinsic collection (this one is extrinsic)");
+    intrinsic_aligner aligner(records, [&files](index_t k) { return read_mesh(files[std::size_t(k)]).mesh; });
+    const auto cb = make_consistent_blended_map(aligner, f, a, b);
+    map = cb.map.nearest;
+    std::fprintf(stderr, "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld)\n", long(cb.group),
+                 cb.consistency.size(), long(cb.pairwise_group));
+  } else {
+    const bool on_vertices = !records[std::size_t(b)].sample_vertex.empty() && records[std::size_t(b)].sample_vertex[0] != no_index;
+    const Eigen::Matrix<double, Eigen::Dynamic, 3> Vb =
+        on_vertices ? Eigen::Matrix<double, Eigen::Dynamic, 3>() : read_mesh(files[std::size_t(b)]).mesh.V;
+    map = best_fuzzy_vertex_map(f, records, a, b, Vb);
+  }
+  write_vertex_map(fs::path(out), std::span<const index_t>(map));
+  return 0;
+}
+
+const cli::register_command reg_fuzzy{"fuzzy", {"fuzzy correspondences of a folder of shapes (chapter 4)", fuzzy_usage, run_fuzzy}};
+const cli::register_command reg_fuzzy_map{"fuzzy-map", {"a dense .map between two shapes of a fuzzy collection", fuzzy_map_usage, run_fuzzy_map}};
+
+}  // namespace
