@@ -4,9 +4,10 @@
 //
 //   run_bim_benchmark --data $SHAPESTRUCT_DATA --set scape --out results/ [--limit N] [--stride K] [--threads T]
 //
-// Error = geodesic distance (Dijkstra, on the target) / (2 sqrt(area of the target)): the normalisation of the
-// stored results (see the data README). Dense sets (SCAPE, TOSCA) are scored at 1,024 geodesic farthest-point
-// samples of the source (the ground truth is the same vertex id); SHREC'07 at the class's .vts feature points.
+// Error = geodesic distance (Dijkstra, on the target) / sqrt(area of the target): the benchmark's scale and that
+// of the stored results (see the data README; eval/geodesic_error.hpp, benchmark_geodesic_errors). Dense sets
+// (SCAPE, TOSCA) are scored at 1,024 geodesic farthest-point samples of the source (the ground truth is the same
+// vertex id); SHREC'07 at the class's .vts feature points.
 // "With flips" takes, per pair, the better of the truth and the truth composed with the class's intrinsic
 // symmetry (.sym.info; for dense sets the symmetry is made dense from the feature points by geodesic
 // descriptors, see eval/geodesic_error.hpp). The cross-set lists (humans: SCAPE/TOSCA/SHREC'07 humans; animals:
@@ -284,7 +285,11 @@ int main(int argc, char** argv) {
           truth_sym.push_back(fb.vertices[static_cast<std::size_t>(fb.perm[k])]);
         }
       }
-      // Scores on the prepared (unit-area) target: normalisation 2 sqrt(1) = 2.
+      // Scores on the prepared (unit-area) target, d / sqrt(area), the area taken from the mesh itself.
+      const auto score = [&](const std::vector<index_t>& predicted, const std::vector<index_t>& true_images) {
+        return benchmark_geodesic_errors(sb.mesh().V, sb.mesh().F, sb.geodesics(), std::span<const index_t>(predicted),
+                                         std::span<const index_t>(true_images), threads);
+      };
       std::vector<index_t> pred_i, truth_i, sym_i;
       for (std::size_t k = 0; k < src_pts.size(); ++k) {
         const index_t p = r.map.target_vertex(src_pts[k]);
@@ -292,8 +297,8 @@ int main(int argc, char** argv) {
         truth_i.push_back(sb.internal_vertex(truth[k]));
         sym_i.push_back(truth_sym[k] == no_index ? truth_i.back() : sb.internal_vertex(truth_sym[k]));
       }
-      const auto e_raw = geodesic_errors(sb.geodesics(), std::span<const index_t>(pred_i), std::span<const index_t>(truth_i), 2.0, threads);
-      const auto e_sym = geodesic_errors(sb.geodesics(), std::span<const index_t>(pred_i), std::span<const index_t>(sym_i), 2.0, threads);
+      const auto e_raw = score(pred_i, truth_i);
+      const auto e_sym = score(pred_i, sym_i);
       if (diagnose_groups) {
         for (std::size_t g = 0; g < r.blended.size(); ++g) {
           const auto& bc = r.blended[g];
@@ -302,10 +307,8 @@ int main(int argc, char** argv) {
             const index_t p = bc.map.nearest.empty() ? no_index : bc.map.nearest[static_cast<std::size_t>(sp)];
             gi.push_back(p == no_index ? no_index : sb.internal_vertex(p));
           }
-          const auto g_raw = summarize_errors(std::span<const double>(geodesic_errors(
-              sb.geodesics(), std::span<const index_t>(gi), std::span<const index_t>(truth_i), 2.0, threads)));
-          const auto g_sym = summarize_errors(std::span<const double>(geodesic_errors(
-              sb.geodesics(), std::span<const index_t>(gi), std::span<const index_t>(sym_i), 2.0, threads)));
+          const auto g_raw = summarize_errors(std::span<const double>(score(gi, truth_i)));
+          const auto g_sym = summarize_errors(std::span<const double>(score(gi, sym_i)));
           groups_csv << pr.source.name() << "," << pr.target.name() << "," << g << "," << bc.maps.size() << ","
                      << fmt(bc.eigen_weight) << "," << fmt(bc.score) << "," << fmt(bc.confidence_integral) << ","
                      << fmt(bc.geodesic_distortion) << "," << fmt(bc.convexity_mismatch) << "," << fmt(g_raw.mean) << "," << fmt(g_sym.mean) << ","

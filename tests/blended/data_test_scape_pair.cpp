@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Blended intrinsic maps on one SCAPE benchmark pair (mesh000 -> mesh037), scored with the benchmark's protocol
-// against the dense ground truth. Skipped without $SHAPESTRUCT_DATA.
+// against the dense ground truth, on the benchmark's scale (d / sqrt(area), as the stored results). Skipped
+// without $SHAPESTRUCT_DATA.
 #include <doctest/doctest.h>
 
 #include "dense_benchmark_error.hpp"
@@ -11,7 +12,7 @@
 
 using namespace shapestruct;
 
-TEST_CASE("blended_matcher on SCAPE mesh000 -> mesh037 beats the stored original result") {
+TEST_CASE("blended_matcher on SCAPE mesh000 -> mesh037 is within 10 % of the stored original result") {
   SHAPESTRUCT_REQUIRE_DATA(scape, "SCAPE");
   const auto A = read_mesh(scape / "Meshes/mesh000.off").mesh;
   const auto B = read_mesh(scape / "Meshes/mesh037.off").mesh;
@@ -25,7 +26,11 @@ TEST_CASE("blended_matcher on SCAPE mesh000 -> mesh037 beats the stored original
   for (index_t v = 0; v < r.map.source_size(); ++v) REQUIRE(r.map.target_vertex(v) != no_index);
   // The benchmark protocol on the template-aligned meshes (truth: the same vertex).
   const auto s = test::dense_identity_errors(sa, sb, r.map);
-  MESSAGE("mesh000 -> mesh037: mean " << s.mean << ", within 0.25 " << s.within_025);
-  CHECK(s.mean <= test::stored_blended_map_mean(scape, "Results_Corr_Scape", "mesh000_to_mesh037", 0.0391));
+  const double stored = test::stored_blended_map_mean(scape, "Results_Corr_Scape", "mesh000_to_mesh037", 0.0391);
+  MESSAGE("mesh000 -> mesh037: mean " << s.mean << " (stored original " << stored << "), within 0.25 " << s.within_025);
+  // On the benchmark's scale this map errs 0.0413 against the stored 0.0391: it does not beat the original on this
+  // pair. (This test used to claim it did, comparing half-scale errors, d / (2 sqrt(area)), with the stored ones.)
+  // The bound is a regression guard with a stated 10 % margin, not a claim of superiority.
+  CHECK(s.mean <= 1.10 * stored);
   CHECK(s.within_025 >= 0.99);
 }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SHREC'07 human 8 -> 13: mesh 8's largest face sits on a finger tip; cut there, its flattening folds and every
-// map with mesh 8 failed (mean error 0.39). blended_shape cuts away from the features. Skipped without
-// $SHAPESTRUCT_DATA.
+// map with mesh 8 failed (mean error 0.78 on the benchmark's scale, d / sqrt(area)). blended_shape cuts away from
+// the features. Skipped without $SHAPESTRUCT_DATA.
 #include <algorithm>
 #include <string>
 #include <vector>
@@ -23,7 +23,7 @@ TEST_CASE("blended_matcher maps SHREC'07 human 8 to 13 with the cut away from me
   blended_matcher_options o;
   o.threads = 2;
   // The cut's effect, isolated from the selection rule: with the cut moved, the rank sum selects the true group
-  // (0.044); the default integrated-confidence rule picks a group that is 0.112 off on this pair.
+  // (0.087); the default integrated-confidence rule picks a group that is 0.224 off on this pair.
   o.selection = blended_selection::area_and_confidence_rank;
   const blended_matcher<> matcher(o);
   const auto sa = matcher.prepare(A);
@@ -33,7 +33,7 @@ TEST_CASE("blended_matcher maps SHREC'07 human 8 to 13 with the cut away from me
     clearance = std::min(clearance, sa.feature_distances().row(sa.mesh().F(sa.flattening().cut_face(), k)).minCoeff());
   CHECK(clearance >= o.shape.cut_clearance);
   const auto r = matcher.match(sa, sb);
-  // The benchmark's protocol for SHREC'07: the class's feature points (8.vts, 13.vts), d / (2 sqrt(area)).
+  // The benchmark's protocol for SHREC'07: the class's feature points (8.vts, 13.vts), d / sqrt(area of the target).
   const auto fa = read_bim_feature_vertices((shrec / "Corrs/8.vts").string());
   const auto fb = read_bim_feature_vertices((shrec / "Corrs/13.vts").string());
   REQUIRE(fa.size() == fb.size());
@@ -42,9 +42,12 @@ TEST_CASE("blended_matcher maps SHREC'07 human 8 to 13 with the cut away from me
     pred.push_back(sb.internal_vertex(r.map.target_vertex(fa[k])));  // the map is in input numbering
     truth.push_back(sb.internal_vertex(fb[k]));
   }
-  const auto e = geodesic_errors(sb.geodesics(), std::span<const index_t>(pred), std::span<const index_t>(truth), 2.0);
+  const auto e = benchmark_geodesic_errors(sb.mesh().V, sb.mesh().F, sb.geodesics(), std::span<const index_t>(pred),
+                                           std::span<const index_t>(truth));
   const auto s = summarize_errors(std::span<const double>(e));
   MESSAGE("SHREC'07 8 -> 13: mean " << s.mean << ", within 0.25 " << s.within_025);
-  CHECK(s.mean < 0.0881);  // the original program's stored result for this pair
+  // The original program's stored result for this pair, 0.0881, on the same scale; the map errs 0.0871, so the
+  // margin is small (1 %).
+  CHECK(s.mean < 0.0881);
   CHECK(s.within_025 >= 0.99);
 }

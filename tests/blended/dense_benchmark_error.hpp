@@ -19,7 +19,8 @@
 namespace shapestruct::test {
 
 /// Errors of `map` (input numbering) at 1,024 geodesic FPS samples of the source, against the truth "input vertex
-/// v goes to input vertex v", as d / (2 sqrt(area)) on the unit-area target. Requires every sample mapped.
+/// v goes to input vertex v", on the benchmark's scale d / sqrt(area of the target) (benchmark_geodesic_errors, as
+/// the runner scores). Requires every sample mapped.
 inline geodesic_error_summary dense_identity_errors(const blended_shape<double>& source,
                                                     const blended_shape<double>& target, const surface_map<double>& map) {
   const auto fps = geodesic_farthest_point_sampling(source.geodesics(), 1024, 0);
@@ -32,7 +33,8 @@ inline geodesic_error_summary dense_identity_errors(const blended_shape<double>&
     pred.push_back(target.internal_vertex(image));
     truth.push_back(target.internal_vertex(input));
   }
-  const auto e = geodesic_errors(target.geodesics(), std::span<const index_t>(pred), std::span<const index_t>(truth), 2.0);
+  const auto e = benchmark_geodesic_errors(target.mesh().V, target.mesh().F, target.geodesics(),
+                                           std::span<const index_t>(pred), std::span<const index_t>(truth));
   return summarize_errors(std::span<const double>(e));
 }
 

@@ -29,7 +29,8 @@ blended_matcher_options small_options() {
   return o;
 }
 
-/// Mean geodesic error (benchmark normalisation, d / (2 sqrt(area))) of a map against the truth truth[v].
+/// Mean geodesic error (the benchmark's scale, d / sqrt(area of the target)) of a map against the truth truth[v].
+/// The bounds below (0.02 for a correct map, 0.2 for a flip) were set on half that scale as 0.01 and 0.1.
 double mean_error(const blended_shape<double>& target, const surface_map<double>& map, const std::vector<index_t>& truth,
                   index_t stride = 7) {
   std::vector<index_t> pred, tru;
@@ -37,7 +38,8 @@ double mean_error(const blended_shape<double>& target, const surface_map<double>
     pred.push_back(map.target_vertex(v));
     tru.push_back(truth[static_cast<std::size_t>(v)]);
   }
-  const auto e = geodesic_errors(target.geodesics(), std::span<const index_t>(pred), std::span<const index_t>(tru), 2.0);
+  const auto e = benchmark_geodesic_errors(target.mesh().V, target.mesh().F, target.geodesics(),
+                                           std::span<const index_t>(pred), std::span<const index_t>(tru));
   return summarize_errors(std::span<const double>(e)).mean;
 }
 }  // namespace
@@ -53,11 +55,11 @@ TEST_CASE("blended_matcher: a shape matched to itself gives the identity (triang
   CHECK(r.blended.size() >= 1);
   const auto sm = matcher.prepare(m);
   CHECK(sm.features().size() >= 4);  // the arm tips
-  CHECK(mean_error(sm, r.map, id) < 0.01);
+  CHECK(mean_error(sm, r.map, id) < 0.02);
 
   const auto legacy = test::to_legacy(m);
   const auto r2 = matcher.match(legacy, legacy);
-  CHECK(mean_error(sm, r2.map, id) < 0.01);
+  CHECK(mean_error(sm, r2.map, id) < 0.02);
 }
 
 TEST_CASE("blended_matcher: a rigidly moved, vertex-permuted copy is matched up to the permutation") {
@@ -67,7 +69,7 @@ TEST_CASE("blended_matcher: a rigidly moved, vertex-permuted copy is matched up 
   const blended_matcher<> matcher(small_options());
   const auto r = matcher.match(m, moved);
   const auto target = matcher.prepare(moved);
-  CHECK(mean_error(target, r.map, perm) < 0.01);
+  CHECK(mean_error(target, r.map, perm) < 0.02);
   // Every source vertex is mapped, to a valid surface point.
   for (index_t v = 0; v < r.map.source_size(); ++v) {
     REQUIRE(r.map.point(v).valid());
@@ -148,14 +150,14 @@ TEST_CASE("blended_matcher tells a map from its intrinsic flip by convexity (dom
   const auto target = blended_matcher<>(o).prepare(moved);
   const auto r = blended_matcher<>(o).match(m, moved);
   INFO("groups: " << r.blended.size());
-  CHECK(mean_error(target, r.map, perm) < 0.01);
+  CHECK(mean_error(target, r.map, perm) < 0.02);
   // The flip is among the blended maps, and intrinsically it is (nearly) as good as the truth.
   std::optional<std::size_t> flip;
   for (std::size_t g = 0; g < r.blended.size(); ++g) {
     const double e = mean_error(target, r.blended[g].map, perm);
     MESSAGE("group " << g << ": error " << e << " score " << r.blended[g].score << " convexity "
                      << r.blended[g].convexity_mismatch << " size " << r.blended[g].maps.size());
-    if (e > 0.1 && (!flip || r.blended[g].score > r.blended[*flip].score)) flip = g;
+    if (e > 0.2 && (!flip || r.blended[g].score > r.blended[*flip].score)) flip = g;
   }
   REQUIRE(flip.has_value());
   const auto& chosen = r.blended[static_cast<std::size_t>(r.selected)];
@@ -257,5 +259,5 @@ TEST_CASE("blended_matcher keeps the max_maps most confident candidates, in enum
   // The identity is among the most confident maps, so the pruned match still finds it.
   std::vector<index_t> id(static_cast<std::size_t>(m.V.rows()));
   std::iota(id.begin(), id.end(), index_t(0));
-  CHECK(mean_error(sm, r.map, id) < 0.01);
+  CHECK(mean_error(sm, r.map, id) < 0.02);
 }
