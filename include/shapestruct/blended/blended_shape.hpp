@@ -38,10 +38,9 @@ struct blended_shape_options {
   /// Suppression radius of the AGD maxima in units of sqrt(area); bumps narrower than this are not features.
   /// 0.15 makes a hand one feature rather than one per spread finger tip: with 0.1, SHREC'07 human 3 had three
   /// features on each hand, their near-duplicate triplet maps outweighed the true ones in S~, and 3 of the 4
-  /// humans-set pairs that failed outright (3->mesh007, michael14->mesh042, mesh028->4) were lost. Measured on all
-  /// five benchmark lists with the rank-sum selection of that time, 0.15 against 0.1 (within 0.25 / mean error):
-  /// humans 0.948/0.058 vs 0.928/0.073, SHREC'07 0.916/0.082 vs 0.903/0.089, TOSCA 0.999/0.015 vs 0.999/0.019, SCAPE
-  /// 0.945/0.055 vs 0.960/0.046, animals 0.945/0.063 vs 0.968/0.054 (docs/blended_maps.md).
+  /// humans-set pairs that failed outright (3->mesh007, michael14->mesh042, mesh028->4) were lost. 0.15 against
+  /// 0.1 on all five benchmark lists: better on humans, SHREC'07 and TOSCA, a little worse on SCAPE and animals
+  /// (the measurements: docs/blended_maps.md).
   double feature_radius = 0.15;
   /// Samples used to interpolate a per-sample quantity to a vertex (Gaussian weights, eq. 3.2's "smooth
   /// interpolation"); the Gaussian width is the sampling's covering radius.
@@ -58,8 +57,8 @@ struct blended_shape_options {
   /// corners lies within this geodesic distance (unit-area units) of a feature point; then the largest face
   /// around the most central vertex (least AGD). The cut's neighbourhood goes to infinity, where the flattening is
   /// resolved worst, and the triplet maps are anchored at the features: a cut at a finger tip (SHREC'07 mesh 8)
-  /// folds the flattening there and made every map with that mesh fail (0.39 mean error; 0.04 with the cut on
-  /// the torso). 0 = always the largest face.
+  /// folds the flattening there and made every map with that mesh fail (a cut on the torso fixes them; the
+  /// measurements: docs/blended_maps.md). 0 = always the largest face.
   double cut_clearance = 0.2;
   mid_edge_flattening_options flattening{};
   int threads = 0;  ///< std::threads for the geodesic tables, 0 = all cores; results do not depend on it

@@ -41,9 +41,9 @@ enum class triplet_pruning {
   random,
   /// Keep the maps whose generating triplets preserve the geodesic distances between the three features best:
   /// sum over the triplet's three pairs of |d_source(s_k, s_l) - d_target(t_k, t_l)| (unit-area units), lowest
-  /// first, ties by enumeration order. A near-isometry's triplets preserve them, so its maps survive; measured on
-  /// TOSCA david6->david12 (10 x 10 features, 86,400 maps): random pruning to 30,000 keeps 29 of the 84 true
-  /// triplet maps and the selected map errs 0.26 (a flip); this keeps them and errs 0.025.
+  /// first, ties by enumeration order. A near-isometry's triplets preserve them, so its maps survive: on TOSCA
+  /// david6->david12 (10 x 10 features, 86,400 maps) random pruning to 30,000 keeps 29 of the 84 true triplet
+  /// maps and selects a flip; this keeps all 84 (errors: docs/blended_maps.md, data test tosca_pruning).
   feature_distances,
 };
 
