@@ -1,16 +1,19 @@
 # Accuracy curves of the BIM benchmark runner (bench/runners/bim_benchmark.cpp).
 # usage: gnuplot -e "set_name='scape'; dir='docs/blended_maps'" scripts/plot_bim_curves.gnuplot
+#        (optional: note='...' is added to the title)
 # reads DIR/<set>_curves.dat, writes DIR/<set>_curves.png and DIR/<set>_curves.svg
+# The error is the benchmark's, geodesic distance / sqrt(area of the target) (the runner's and the stored results').
 if (!exists("dir")) dir = "."
 if (!exists("set_name")) set_name = "scape"
 datafile = sprintf("%s/%s_curves.dat", dir, set_name)
-set xlabel "geodesic error D (distance / (2 sqrt(area)))"
+set xlabel "geodesic error D (distance / sqrt(area))"
 set ylabel "fraction of correspondences with error <= D"
 set xrange [0:0.25]
 set yrange [0:1]
 set key bottom right
 set grid
-set title sprintf("Blended intrinsic maps, %s", set_name)
+if (!exists("note")) note = ""
+set title sprintf("Blended intrinsic maps, %s%s", set_name, note)
 do for [fmt in "png svg"] {
   if (fmt eq "png") { set terminal pngcairo size 800,560 } else { set terminal svg size 800,560 }
   set output sprintf("%s/%s_curves.%s", dir, set_name, fmt)
