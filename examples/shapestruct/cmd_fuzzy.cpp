@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "command.hpp"
 #include "shapestruct/fuzzy/collection_records.hpp"
 #include "shapestruct/fuzzy/extrinsic_alignment.hpp"
@@ -50,9 +52,10 @@ const char* fuzzy_map_usage =
 /// One progress line per stage, rewritten in place: done / total, percent, time left.
 class progress_line {
  public:
-  explicit progress_line(bool quiet) : quiet_(quiet) {}
+  explicit progress_line(bool quiet) : quiet_(quiet), terminal_(isatty(2) != 0) {}
   void update(const std::string& stage, std::size_t done, std::size_t total) {
-    if (quiet_ || total == 0) return;
+    // On a terminal the line is redrawn in place; in a log only each stage's last state is written.
+    if (quiet_ || total == 0 || (!terminal_ && done < total)) return;
     const auto now = steady::now();
     if (stage != stage_) {
       if (!stage_.empty()) std::fprintf(stderr, "\n");
@@ -75,6 +78,7 @@ class progress_line {
 
  private:
   bool quiet_;
+  bool terminal_;
   std::string stage_;
   steady::time_point start_;
 };
