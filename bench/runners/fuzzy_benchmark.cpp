@@ -45,6 +45,22 @@ using clock_type = std::chrono::steady_clock;
 
 namespace {
 
+/// Pipeline settings the runner can change from the command line (defaults: the chapter's).
+struct tuning {
+  double time = -1;        ///< --time: diffusion time t
+  index_t dims = -1;       ///< --dims: embedding dimensions
+  index_t iterations = -1; ///< --iterations: graph-optimisation rounds
+  index_t samples = 128;   ///< --samples: K
+  bool baseline = true;    ///< --no-baseline skips the all-pairs extrinsic baseline (slow: every pair aligned)
+};
+tuning knobs;
+
+void apply(fuzzy_collection_options& fo) {
+  if (knobs.time >= 0) fo.embedding.time = knobs.time;
+  if (knobs.dims > 0) fo.embedding.dimensions = knobs.dims;
+  if (knobs.iterations >= 0) fo.max_iterations = knobs.iterations;
+}
+
 double seconds_since(clock_type::time_point t) { return std::chrono::duration<double>(clock_type::now() - t).count(); }
 
 std::string fmt(double x, int prec = 3) {
@@ -155,6 +171,7 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
     fuzzy_collection_options fo;
     fo.threads = threads;
     fo.cache_folder = out_dir / "cache" / ("shrec_class" + std::to_string(cls));
+    apply(fo);
     const auto t1 = clock_type::now();
     const auto r = compute_fuzzy_correspondences(records, aligner, fo);
     const double t_fuzzy = seconds_since(t1);
@@ -208,9 +225,9 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
       if (fs::exists(st)) {
         const auto blocks = read_bim_result(st.string());
         if (blocks.count("Stats")) {
-          const auto& e = blocks.at("Stats").errors;
-          total["stored_original"].add(e, blocks.count("StatsWithFlip") ? blocks.at("StatsWithFlip").errors : e);
-          here["stored_original"].add(e, blocks.count("StatsWithFlip") ? blocks.at("StatsWithFlip").errors : e);
+          const auto& e = blocks.at("Stats").per_sample_errors;
+          total["stored_original"].add(e, blocks.count("StatsWithFlip") ? blocks.at("StatsWithFlip").per_sample_errors : e);
+          here["stored_original"].add(e, blocks.count("StatsWithFlip") ? blocks.at("StatsWithFlip").per_sample_errors : e);
         }
       }
     }
@@ -257,13 +274,16 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
     shapes[std::size_t(i)] = gen.generate(std::uint64_t(i));
     shape_record_options o;
     o.metric = sample_metric::euclidean;
+    o.samples = knobs.samples;
     records[std::size_t(i)] = make_shape_record(shapes[std::size_t(i)].mesh, set + std::to_string(i), describe, o);
   });
   const double t_records = seconds_since(t0);
   const extrinsic_aligner aligner(records);
   fuzzy_collection_options fo;
   fo.threads = threads;
-  fo.cache_folder = out_dir / "cache" / (set + std::to_string(count) + "_seed" + std::to_string(seed));
+  fo.cache_folder = out_dir / "cache" / (set + std::to_string(count) + "_seed" + std::to_string(seed) + "_k" +
+                                         std::to_string(knobs.samples));
+  apply(fo);
   const auto t1 = clock_type::now();
   const auto r = compute_fuzzy_correspondences(records, aligner, fo);
   const double t_fuzzy = seconds_since(t1);
@@ -285,7 +305,7 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
   };
   std::vector<double> e_fuzzy, e_pairwise, e_affine;
   const auto t2 = clock_type::now();
-  std::vector<std::vector<double>> ef(std::size_t(count)), ep(std::size_t(count)), ea(std::size_t(count));
+  std::vector<std::vector<double>> ef(static_cast<std::size_t>(count)), ep(ef), ea(ef);
   detail::parallel_for(count, detail::resolve_threads(threads), [&](int a) {
     const auto la = landmarks(a);
     for (int b = 0; b < count; ++b) {
@@ -296,8 +316,7 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
       const auto& Vb = shapes[std::size_t(b)].mesh.V;
       const double diag = (Vb.colwise().maxCoeff() - Vb.colwise().minCoeff()).norm();
       const auto fuzzy_match = r.fuzzy.best_matches(a, b);
-      const pair_alignment pa = align_extrinsic(ra, rb);
-      const auto& scores = pa.alternatives[std::size_t(pa.initial)].scores;
+      const pair_alignment pa = knobs.baseline ? align_extrinsic(ra, rb) : pair_alignment{};
       // Least-squares affine map of b's true landmarks onto a's (both directions share the landmark names).
       std::vector<std::string> common;
       for (const auto& [name, x] : la)
@@ -315,11 +334,14 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
         const index_t s = nearest_sample(ra, la.at(name));
         const Eigen::Vector3d truth = lb.at(name);
         ef[std::size_t(a)].push_back((rb.samples.row(fuzzy_match[std::size_t(s)]).transpose() - truth).norm() / diag);
-        index_t best = 0;
-        float top = -1;
-        for (Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>::InnerIterator it(scores, s); it; ++it)
-          if (it.value() > top) top = it.value(), best = it.col();
-        ep[std::size_t(a)].push_back((rb.samples.row(best).transpose() - truth).norm() / diag);
+        if (knobs.baseline) {
+          const auto& scores = pa.alternatives[std::size_t(pa.initial)].scores;
+          index_t best = 0;
+          float top = -1;
+          for (Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>::InnerIterator it(scores, s); it; ++it)
+            if (it.value() > top) top = it.value(), best = it.col();
+          ep[std::size_t(a)].push_back((rb.samples.row(best).transpose() - truth).norm() / diag);
+        }
         index_t aff = 0;
         (Bt.rowwise() - ra.samples.row(s)).rowwise().squaredNorm().minCoeff(&aff);
         ea[std::size_t(a)].push_back((rb.samples.row(aff).transpose() - truth).norm() / diag);
@@ -377,9 +399,15 @@ int main(int argc, char** argv) {
     else if (a == "--threads") threads = std::stoi(next());
     else if (a == "--count") count = std::stoi(next());
     else if (a == "--seed") seed = std::stoull(next());
+    else if (a == "--time") knobs.time = std::stod(next());
+    else if (a == "--dims") knobs.dims = std::stoi(next());
+    else if (a == "--iterations") knobs.iterations = std::stoi(next());
+    else if (a == "--samples") knobs.samples = std::stoi(next());
+    else if (a == "--no-baseline") knobs.baseline = false;
     else {
       std::cerr << "usage: run_fuzzy_benchmark --set shrec|chairs|airplanes --out DIR [--data DIR] [--classes 1,4] "
-                   "[--count N] [--seed S] [--threads T]\n";
+                   "[--count N] [--seed S] [--threads T]\n"
+                   "  [--time t] [--dims d] [--iterations I] [--samples K] [--no-baseline]\n";
       return 2;
     }
   }
