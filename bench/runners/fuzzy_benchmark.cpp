@@ -118,6 +118,11 @@ std::vector<int> parse_list(const std::string& s) {
 }
 
 void print_log(const fuzzy_collection_result& r) {
+  const auto& ev = r.fuzzy.embedding().eigenvalues;
+  std::cout << "    eigenvalues (index: lambda):";
+  for (const index_t i : {0, 7, 15, 31, 63, 127})
+    if (i < ev.size()) std::cout << " " << i + 1 << ": " << fmt(ev[i], 4);
+  std::cout << "\n";
   for (const auto& it : r.log)
     std::cout << "    iteration " << it.iteration << ": edges " << it.edges << ", switched " << it.alternatives_changed
               << ", pruned " << it.pruned << ", added " << it.added << ", reconnected " << it.reconnected

@@ -166,6 +166,12 @@ int run_fuzzy(const std::vector<std::string>& args) {
   }
   bar.finish();
   const double seconds_fuzzy = since(t_fuzzy);
+  json_value::array disconnected;
+  for (const index_t k : r.disconnected) {
+    std::fprintf(stderr, "fuzzy: %s is not connected to the rest of the collection: every alignment to it was "
+                 "rejected, so its correspondences to the others mean nothing\n", col.files[std::size_t(k)].string().c_str());
+    disconnected.push_back(json_value(col.records[std::size_t(k)].name));
+  }
 
   // 3. Outputs.
   write_fuzzy_correspondence(out_dir / "fuzzy.bin", r.fuzzy);
@@ -219,6 +225,7 @@ int run_fuzzy(const std::vector<std::string>& args) {
       {"samples", static_cast<long long>(samples)},
       {"shapes", shapes},
       {"skipped", skipped},
+      {"disconnected", disconnected},
       {"pairs_aligned", static_cast<long long>(r.pairs_aligned)},
       {"pairs_total", static_cast<long long>(N * (N - 1) / 2)},
       {"iterations", static_cast<long long>(r.log.size() - 1)},

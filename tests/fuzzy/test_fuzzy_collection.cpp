@@ -251,3 +251,32 @@ TEST_CASE("fuzzy collection: fewer than two shapes and bad options are invalid_i
   o.prune_fraction = 2;
   CHECK_THROWS_AS((void)ss::compute_fuzzy_correspondences(planted_records(3, 4), aligner, o), ss::invalid_input);
 }
+
+namespace {
+/// Rejects every pair that involves shape 0 (no alternative), aligns the rest exactly.
+struct rejecting_aligner {
+  int K;
+  ss::pair_alignment align(ss::index_t a, ss::index_t b) const {
+    ss::pair_alignment out;
+    if (a == 0 || b == 0) return out;
+    ss::alignment_alternative right;
+    right.scores = permutation_scores(identity(K), 0.9f);
+    right.global_score = 0.9;
+    out.alternatives = {right};
+    return out;
+  }
+};
+}  // namespace
+
+TEST_CASE("fuzzy collection: a shape whose every alignment is rejected is reported as disconnected") {
+  const auto records = planted_records(8, 6);
+  ss::fuzzy_collection_options o;
+  o.embedding.dimensions = 8;
+  o.threads = 1;
+  const auto r = ss::compute_fuzzy_correspondences(records, rejecting_aligner{6}, o, ss::dense_embedding_solver{});
+  REQUIRE(r.disconnected.size() == 1);
+  CHECK(r.disconnected[0] == 0);
+  for (const auto& e : r.edges) CHECK(e.source != 0);
+  // The others still correspond sample by sample.
+  for (ss::index_t i = 0; i < 6; ++i) CHECK(r.fuzzy.best_match(r.fuzzy.point(3, i), 5) == i);
+}

@@ -83,27 +83,34 @@ struct fuzzy_collection_result {
   std::size_t pairs_aligned = 0;        ///< distinct pairs aligned over the whole run
   std::size_t pairs_computed = 0;       ///< of which computed in this process (the rest came from the cache)
   bool converged = false;               ///< the graph stopped changing before max_iterations
+  /// Shapes outside the largest connected component of the final graph (every alignment to the rest was
+  /// rejected by the aligner): f between them and the rest means nothing.
+  std::vector<index_t> disconnected;
 };
 
 namespace detail {
 
-/// Consistency score of an alternative (eq. 4.10): sum over source samples p1 of sum_p2 a(p1, p2) f(p1, p2),
-/// each row divided by sum over the target's samples of f(p1, p).
-inline double consistency_score(const alignment_alternative& alt, const fuzzy_correspondence& f, index_t source,
-                                index_t target) {
+/// Consistency score of an alternative (eq. 4.10) given F = f.block(source, target): sum over source samples p1
+/// of sum_p2 a(p1, p2) f(p1, p2), each row divided by sum over the target's samples of f(p1, p).
+inline double consistency_score(const alignment_alternative& alt, const Eigen::MatrixXd& F) {
   const auto& a = alt.scores;
   double score = 0;
   for (index_t i = 0; i < a.outerSize(); ++i) {
     if (a.outerIndexPtr()[i] == a.outerIndexPtr()[i + 1]) continue;
-    const Eigen::VectorXd row = f.row(f.point(source, i), target);
-    const double norm = row.sum();
+    const double norm = F.row(i).sum();
     if (!(norm > 0)) continue;
     double s = 0;
     for (Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>::InnerIterator it(a, i); it; ++it)
-      s += double(it.value()) * row[it.col()];
+      s += double(it.value()) * F(i, it.col());
     score += s / norm;
   }
   return score;
+}
+
+/// The same, computing the block of f itself (one alternative).
+inline double consistency_score(const alignment_alternative& alt, const fuzzy_correspondence& f, index_t source,
+                                index_t target) {
+  return consistency_score(alt, f.block(source, target));
 }
 
 }  // namespace detail
@@ -175,7 +182,8 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
     std::vector<key> pairs;
     for (const auto& [a, b] : g0.edges) pairs.push_back(alignment_store::make_key(a, b));
     align(pairs);
-    for (const auto& p : pairs) chosen[p] = store.at(p.first, p.second).initial;
+    for (const auto& p : pairs)  // a pair the aligner rejected (no alternative) is no edge
+      if (!store.at(p.first, p.second).alternatives.empty()) chosen[p] = store.at(p.first, p.second).initial;
     first.align_seconds = since(t0);
   }
   first.edges = static_cast<index_t>(chosen.size());
@@ -195,10 +203,11 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
     const unsigned workers = detail::resolve_threads(options.threads, who);
     detail::parallel_for(static_cast<index_t>(edges.size()), workers, [&](index_t e) {
       const auto& pa = store.at(edges[std::size_t(e)].first, edges[std::size_t(e)].second);
+      const Eigen::MatrixXd F = f.block(pa.source, pa.target);
       index_t arg = chosen.at(edges[std::size_t(e)]);
-      double best = detail::consistency_score(pa.alternatives[std::size_t(arg)], f, pa.source, pa.target);
+      double best = detail::consistency_score(pa.alternatives[std::size_t(arg)], F);
       for (std::size_t a = 0; a < pa.alternatives.size(); ++a) {
-        const double s = detail::consistency_score(pa.alternatives[a], f, pa.source, pa.target);
+        const double s = detail::consistency_score(pa.alternatives[a], F);
         if (s > best) best = s, arg = static_cast<index_t>(a);
       }
       best_alt[std::size_t(e)] = arg;
@@ -274,7 +283,8 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
     if (!added.empty()) {
       const auto t0 = clock::now();
       align(added);
-      for (const auto& p : added) chosen[p] = store.at(p.first, p.second).initial;
+      for (const auto& p : added)
+        if (!store.at(p.first, p.second).alternatives.empty()) chosen[p] = store.at(p.first, p.second).initial;
       it.align_seconds = since(t0);
     }
     it.added = static_cast<index_t>(added.size());
@@ -295,6 +305,16 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
     const auto& pa = store.at(k.first, k.second);
     out.edges.push_back({k.first, k.second, alt,
                          detail::consistency_score(pa.alternatives[std::size_t(alt)], f, k.first, k.second)});
+  }
+  {
+    std::vector<std::pair<index_t, index_t>> final_edges;
+    for (const auto& [k, alt] : chosen) final_edges.push_back(k);
+    const auto comp = connected_components(make_alignment_graph(N, std::move(final_edges)));
+    std::vector<index_t> size(static_cast<std::size_t>(comp.count), 0);
+    for (const auto c : comp.label) ++size[std::size_t(c)];
+    const auto largest = static_cast<index_t>(std::max_element(size.begin(), size.end()) - size.begin());
+    for (index_t k = 0; k < N; ++k)
+      if (comp.label[std::size_t(k)] != largest) out.disconnected.push_back(k);
   }
   out.fuzzy = std::move(f);
   out.pairs_aligned = store.size();

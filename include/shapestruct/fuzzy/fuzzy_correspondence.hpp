@@ -73,6 +73,22 @@ class fuzzy_correspondence {
     return f;
   }
 
+  /// f between every sample of shape k (rows) and every sample of shape l (columns), through one matrix product
+  /// of the two shapes' embedded samples. O(K_k K_l d).
+  [[nodiscard]] Eigen::MatrixXd block(index_t k, index_t l) const {
+    const auto& X = embedding_.coordinates;
+    const index_t ok = embedding_.offset(k), ol = embedding_.offset(l);
+    const index_t mk = embedding_.samples_of(k), ml = embedding_.samples_of(l);
+    const Eigen::MatrixXf A = X.middleRows(ok, mk), B = X.middleRows(ol, ml);
+    Eigen::MatrixXf D2 = -2.0f * A * B.transpose();
+    D2.colwise() += A.rowwise().squaredNorm();
+    D2.rowwise() += B.rowwise().squaredNorm().transpose();
+    Eigen::MatrixXd F(mk, ml);
+    for (index_t j = 0; j < ml; ++j)
+      for (index_t i = 0; i < mk; ++i) F(i, j) = from_squared(std::max(0.0, double(D2(i, j))), double(tau_[ok + i]));
+    return F;
+  }
+
   /// The sample of shape l closest to global row p in the embedding: the best fuzzy correspondence (ch. 4.4.2).
   [[nodiscard]] index_t best_match(index_t p, index_t l) const {
     index_t best = 0;
@@ -93,11 +109,16 @@ class fuzzy_correspondence {
   [[nodiscard]] double integrated(index_t k, index_t l, index_t stride = 1) const {
     const auto& X = embedding_.coordinates;
     const index_t ok = embedding_.offset(k), ol = embedding_.offset(l);
-    const index_t mk = embedding_.samples_of(k), ml = embedding_.samples_of(l);
+    const index_t mk = (embedding_.samples_of(k) + stride - 1) / stride, ml = (embedding_.samples_of(l) + stride - 1) / stride;
+    Eigen::MatrixXf A(mk, X.cols()), B(ml, X.cols());
+    for (index_t i = 0; i < mk; ++i) A.row(i) = X.row(ok + i * stride);
+    for (index_t j = 0; j < ml; ++j) B.row(j) = X.row(ol + j * stride);
+    Eigen::MatrixXf D2 = -2.0f * A * B.transpose();
+    D2.colwise() += A.rowwise().squaredNorm();
+    D2.rowwise() += B.rowwise().squaredNorm().transpose();
     double sum = 0;
-    for (index_t i = 0; i < mk; i += stride)
-      for (index_t j = 0; j < ml; j += stride)
-        sum += from_squared(double((X.row(ok + i) - X.row(ol + j)).squaredNorm()), double(tau_[ok + i]));
+    for (index_t j = 0; j < ml; ++j)
+      for (index_t i = 0; i < mk; ++i) sum += from_squared(std::max(0.0, double(D2(i, j))), double(tau_[ok + i * stride]));
     return sum * double(stride * stride);
   }
 

@@ -73,8 +73,9 @@ struct consistent_blended_map {
   consistent_blended_map out;
   out.pairwise_group = r.selected;
   double best = -1;
+  const Eigen::MatrixXd F = f.block(a, b);
   for (const auto& alt : alts.alternatives) {
-    const double s = detail::consistency_score(alt, f, a, b);
+    const double s = detail::consistency_score(alt, F);
     out.consistency.push_back(s);
     const auto g = static_cast<index_t>(alt.parameters.at(0));
     if (s > best) best = s, out.group = g;
