@@ -32,12 +32,13 @@ using steady = std::chrono::steady_clock;
 
 const char* fuzzy_usage =
     "usage: shapestruct fuzzy DIR -o OUT [--mode extrinsic|intrinsic|auto] [--samples K] [--threads N]\n"
-    "                         [--edges-per-shape M] [--up 0|1|2] [--quiet]\n"
+    "                         [--edges-per-shape M] [--up 0|1|2] [--diffusion-time T] [--dimensions D] [--quiet]\n"
     "Fuzzy correspondences of every shape file (.off .obj .ply .stl) in DIR (chapter 4): K farthest-point samples\n"
     "per shape, an initial alignment graph from spherical-harmonic descriptors, pairwise alignments along its\n"
     "edges (extrinsic: upright ICP; intrinsic: blended intrinsic maps), the diffusion embedding of the\n"
-    "correspondence matrix and the graph optimisation of Algorithm 1. auto (the default) is intrinsic when every\n"
-    "shape is a closed genus-0 surface, else extrinsic. OUT holds (docs/fuzzy.md): collection.json, samples.txt,\n"
+    "correspondence matrix (time T = 10, D = 64 dimensions) and the graph optimisation of Algorithm 1.\n"
+    "--mode auto (the default) is intrinsic when every shape is a closed genus-0 surface, else extrinsic; in\n"
+    "intrinsic mode a shape that is not is left out and named. OUT holds (docs/fuzzy.md): collection.json, samples.txt,\n"
     "graph.txt, iterations.tsv, fuzzy.bin, and the resume caches records/ and pairs/: run the same command again\n"
     "after an interruption and finished work is not redone. Unreadable, empty or non-finite shapes are reported\n"
     "and skipped.\n";
@@ -93,14 +94,17 @@ int run_fuzzy(const std::vector<std::string>& args) {
   const long long threads = reader.integer({"--threads"}, 0);
   const long long edges_per_shape = reader.integer({"--edges-per-shape"}, 5);
   const long long up = reader.integer({"--up"}, 1);
+  const double diffusion_time = reader.real({"--diffusion-time"}, 10.0);
+  const long long dimensions = reader.integer({"--dimensions"}, 64);
   const bool quiet = reader.flag("--quiet");
   const auto pos = reader.positionals();
   if (pos.size() != 1) throw cli::usage_error("expected one input folder DIR");
   if (out.empty()) throw cli::usage_error("-o OUT is required");
   if (mode != "auto" && mode != "extrinsic" && mode != "intrinsic")
     throw cli::usage_error("--mode must be extrinsic, intrinsic or auto, got '" + mode + "'");
-  if (samples < 3 || threads < 0 || edges_per_shape < 1 || up < 0 || up > 2)
-    throw cli::usage_error("--samples >= 3, --threads >= 0, --edges-per-shape >= 1, --up 0|1|2");
+  if (samples < 3 || threads < 0 || edges_per_shape < 1 || up < 0 || up > 2 || !(diffusion_time >= 0) || dimensions < 1)
+    throw cli::usage_error(
+        "--samples >= 3, --threads >= 0, --edges-per-shape >= 1, --up 0|1|2, --diffusion-time >= 0, --dimensions >= 1");
   const auto files = list_shape_files(pos[0]);
   if (files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + pos[0]);
   const fs::path out_dir(out);
@@ -150,6 +154,8 @@ int run_fuzzy(const std::vector<std::string>& args) {
   fuzzy_collection_options fo;
   fo.threads = static_cast<int>(threads);
   fo.graph.edges_per_shape = static_cast<index_t>(edges_per_shape);
+  fo.embedding.time = diffusion_time;
+  fo.embedding.dimensions = static_cast<index_t>(dimensions);
   fo.cache_folder = out_dir / "pairs";
   fo.on_progress = [&](const std::string& stage, std::size_t d, std::size_t t) { bar.update(stage, d, t); };
   const auto t_fuzzy = steady::now();
