@@ -7,6 +7,10 @@
 //       them (feature points, geodesic / sqrt(area) on the target, raw and with the class's symmetry): the
 //       pairwise blended map (the matcher alone), the consistent blended map (4.4.5) and the best fuzzy
 //       correspondence (4.4.2); the stored original BIM figure is read beside them.
+//   run_fuzzy_benchmark --set scape --data $SHAPESTRUCT_DATA --out DIR [--threads T]
+//       The 71 meshes of the benchmark's Corr_Scape.query as one intrinsic collection; its 71 pairs scored at 1,024
+//       geodesic farthest-point samples of the source (dense truth: the same vertex id), raw and with the
+//       symmetry made dense from the feature points, beside the pairwise blended maps and the stored original.
 //   run_fuzzy_benchmark --set chairs|airplanes --count N --out DIR [--threads T] [--seed S]
 //       A generated collection of polygon soups with named landmarks, extrinsic: landmark error / bounding-box
 //       diagonal of the target, over all ordered pairs, for the best fuzzy correspondence, the extrinsic
@@ -267,6 +271,102 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
   return 0;
 }
 
+// ---------------------------------------------------------------------------------------------- SCAPE
+int run_scape(const fs::path& data, const fs::path& out_dir, int threads) {
+  const auto pairs = read_bim_query((data / "Results" / "Corr_Scape.query").string());
+  std::set<std::string> names;
+  for (const auto& p : pairs) names.insert(p.source.relative_path()), names.insert(p.target.relative_path());
+  std::vector<fs::path> files;
+  for (const auto& n : names) files.push_back(data / n);
+  const auto t0 = clock_type::now();
+  collection_records_options ro;
+  ro.threads = threads;
+  ro.cache_folder = out_dir / "cache" / "scape_records";
+  auto col = make_collection_records(files, ro);
+  std::vector<shape_record> records;
+  std::vector<fs::path> kept;
+  std::map<std::string, index_t> index_of;
+  for (std::size_t i = 0; i < col.records.size(); ++i)
+    if (col.records[i].closed_genus0) {
+      index_of[col.records[i].name] = static_cast<index_t>(records.size());
+      records.push_back(col.records[i]);
+      kept.push_back(col.files[i]);
+    } else {
+      std::cout << "  left out " << col.files[i].filename().string() << ": not a closed genus-0 surface\n";
+    }
+  const double t_records = seconds_since(t0);
+  intrinsic_aligner aligner(records, [&](index_t k) { return read_mesh(kept[std::size_t(k)]).mesh; });
+  fuzzy_collection_options fo;
+  fo.threads = threads;
+  fo.cache_folder = out_dir / "cache" / "scape_pairs";
+  apply(fo);
+  const auto t1 = clock_type::now();
+  const auto r = compute_fuzzy_correspondences(records, aligner, fo);
+  const double t_fuzzy = seconds_since(t1);
+  const std::size_t all = records.size() * (records.size() - 1) / 2;
+  std::cout << "SCAPE: " << records.size() << " shapes, records " << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1)
+            << " s, pairs aligned " << r.pairs_aligned << " of " << all << " ("
+            << fmt(100.0 * double(r.pairs_aligned) / double(all), 1) << " %)\n";
+  print_log(r);
+  const auto feats = read_bim_feature_vertices((data / "SCAPE/Corrs/1.pid").string());
+  const auto perm = read_bim_symmetry((data / "SCAPE/Corrs/1.sym.info").string(), static_cast<index_t>(feats.size()));
+  std::map<std::string, method_errors> total;
+  std::ofstream csv(out_dir / "scape_pairs.csv");
+  csv << "source,target,method,mean,w025,mean_flip,flipped\n";
+  const auto t2 = clock_type::now();
+  for (const auto& pr : pairs) {
+    const std::string a = pr.source.name(), b = pr.target.name();
+    if (!index_of.count(a) || !index_of.count(b)) continue;
+    const index_t ia = index_of[a], ib = index_of[b];
+    const auto A = read_mesh(kept[std::size_t(ia)]).mesh;
+    const auto B = read_mesh(kept[std::size_t(ib)]).mesh;
+    if (A.V.rows() != B.V.rows()) continue;  // no dense truth
+    const dijkstra_geodesics<double> geo_a(A.V, A.F), geo_b(B.V, B.F);
+    const auto fps = geodesic_farthest_point_sampling(geo_a, std::min<index_t>(1024, A.V.rows()), 0);
+    const std::vector<index_t>& truth = fps.indices;  // same vertex id = same point
+    const auto truth_sym = symmetric_vertices(geo_b, std::span<const index_t>(feats), std::span<const index_t>(perm),
+                                              std::span<const index_t>(truth), threads);
+    auto score = [&](const std::string& method, const std::vector<index_t>& map_of_vertex) {
+      std::vector<index_t> pred;
+      for (const index_t v : truth) pred.push_back(map_of_vertex[std::size_t(v)]);
+      const auto e_raw = benchmark_geodesic_errors<double>(B.V, B.F, geo_b, std::span<const index_t>(pred),
+                                                            std::span<const index_t>(truth), threads);
+      const auto e_sym = benchmark_geodesic_errors<double>(B.V, B.F, geo_b, std::span<const index_t>(pred),
+                                                            std::span<const index_t>(truth_sym), threads);
+      total[method].add(e_raw, e_sym);
+      csv << a << "," << b << "," << method << "," << fmt(mean_of(e_raw), 4) << "," << fmt(within(e_raw, 0.25), 3) << ","
+          << fmt(std::min(mean_of(e_raw), mean_of(e_sym)), 4) << "," << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "\n";
+    };
+    const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib);
+    score("pairwise", aligner.match(ia, ib).map.nearest);
+    score("consistent_blended", cb.map.nearest);
+    score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
+    const fs::path st = data / "Results/Results_Corr_Scape" / ("BenchResult_BlendedMap_" + a + "_to_" + b + ".txt");
+    if (fs::exists(st)) {
+      const auto blocks = read_bim_result(st.string());
+      if (blocks.count("Stats")) {
+        const auto& e = blocks.at("Stats").per_sample_errors;
+        total["stored_original"].add(e, blocks.count("StatsWithFlip") ? blocks.at("StatsWithFlip").per_sample_errors : e);
+      }
+    }
+  }
+  std::ofstream summary(out_dir / "summary.md", std::ios::app);
+  summary << "\n## SCAPE, the benchmark's 71 meshes as one intrinsic collection (run_fuzzy_benchmark --set scape)\n\n"
+          << records.size() << " shapes, pairs aligned " << r.pairs_aligned << " of " << all << ", records "
+          << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1) << " s, evaluation " << fmt(seconds_since(t2), 1)
+          << " s\n\n| method | within 0.05 | within 0.10 | within 0.25 | mean | with flips: within 0.25 | mean | flipped pairs |\n"
+             "|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [m, e] : total) {
+    summary << "| " << m << " | " << fmt(within(e.raw, 0.05)) << " | " << fmt(within(e.raw, 0.10)) << " | "
+            << fmt(within(e.raw, 0.25)) << " | " << fmt(mean_of(e.raw), 4) << " | " << fmt(within(e.flip, 0.25)) << " | "
+            << fmt(mean_of(e.flip), 4) << " | " << e.flipped_pairs << " of " << e.pairs << " |\n";
+    std::cout << m << ": within 0.05 " << fmt(within(e.raw, 0.05)) << ", 0.25 raw " << fmt(within(e.raw, 0.25))
+              << ", flips " << fmt(within(e.flip, 0.25)) << ", mean " << fmt(mean_of(e.raw), 4) << ", flipped pairs "
+              << e.flipped_pairs << " of " << e.pairs << "\n";
+  }
+  return 0;
+}
+
 // ---------------------------------------------------------------------------------------------- generated
 int run_generated(const std::string& set, int count, const fs::path& out_dir, int threads, std::uint64_t seed) {
   const assembly_kind kind = set == "chairs" ? assembly_kind::chair : assembly_kind::airplane;
@@ -410,7 +510,7 @@ int main(int argc, char** argv) {
     else if (a == "--samples") knobs.samples = std::stoi(next());
     else if (a == "--no-baseline") knobs.baseline = false;
     else {
-      std::cerr << "usage: run_fuzzy_benchmark --set shrec|chairs|airplanes --out DIR [--data DIR] [--classes 1,4] "
+      std::cerr << "usage: run_fuzzy_benchmark --set shrec|scape|chairs|airplanes --out DIR [--data DIR] [--classes 1,4] "
                    "[--count N] [--seed S] [--threads T]\n"
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--no-baseline]\n";
       return 2;
@@ -425,11 +525,18 @@ int main(int argc, char** argv) {
       }
       return run_shrec(data_dir, out, classes, threads);
     }
+    if (set == "scape") {
+      if (data_dir.empty()) {
+        std::cerr << "--set scape needs --data DIR or $SHAPESTRUCT_DATA\n";
+        return 2;
+      }
+      return run_scape(data_dir, out, threads);
+    }
     if (set == "chairs" || set == "airplanes") return run_generated(set, count, out, threads, seed);
   } catch (const std::exception& e) {
     std::cerr << "run_fuzzy_benchmark: " << e.what() << "\n";
     return 1;
   }
-  std::cerr << "--set must be shrec, chairs or airplanes\n";
+  std::cerr << "--set must be shrec, scape, chairs or airplanes\n";
   return 2;
 }
