@@ -23,6 +23,7 @@
 #include "shapestruct/geometry/dijkstra_geodesics.hpp"
 #include "shapestruct/geometry/farthest_point_sampling.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
+#include "shapestruct/geometry/mesh_repair.hpp"
 #include "shapestruct/geometry/surface_sampling.hpp"
 #include "shapestruct/knn/knn_index.hpp"
 
@@ -101,6 +102,11 @@ template <SurfaceMesh Mesh, ShapeDescriptor Descriptor>
                         std::string(who) + ": shape '" + r.name + "' has no face of positive finite area");
   const mesh_report report = check_mesh(m);
   r.closed_genus0 = report.is_closed_genus0_manifold();
+  // A sphere pinched at a few vertices (SCAPE's template at vertex 419) is still a sphere to the blended matcher
+  // (mid_edge_flattening accepts pinched vertices): it is one once those vertices are split.
+  if (!r.closed_genus0 && report.is_valid() && report.is_closed() && report.num_non_manifold_edges == 0 &&
+      report.num_non_manifold_vertices > 0)
+    r.closed_genus0 = check_mesh(split_non_manifold_vertices(m).mesh).is_closed_genus0_manifold();
   const bool geodesic = options.metric == sample_metric::geodesic ||
                         (options.metric == sample_metric::automatic && r.closed_genus0);
   if (geodesic && !r.closed_genus0)

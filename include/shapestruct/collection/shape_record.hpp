@@ -34,7 +34,8 @@ struct shape_record {
   /// Diam(S) of ch. 4.3.3: mean Euclidean distance between all pairs of samples; sigma(S) = Diam / 5.
   double diameter = 0;
   double area = 0;             ///< total surface area (0 for point clouds)
-  /// Closed, connected, genus-0 manifold: eligible for intrinsic (blended-map) alignment.
+  /// Closed, connected, genus-0 surface (a manifold once pinched vertices are split): eligible for intrinsic
+  /// (blended-map) alignment.
   bool closed_genus0 = false;
   index_t vertex_count = 0;    ///< #V of the input mesh (the length of vertex_sample)
 
