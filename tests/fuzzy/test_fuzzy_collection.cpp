@@ -2,7 +2,9 @@
 // Tests of the fuzzy-correspondence core: the correspondence matrix, the diffusion embedding, f, and Algorithm 1.
 #include <doctest/doctest.h>
 
+#include <atomic>
 #include <cmath>
+#include <stdexcept>
 #include <filesystem>
 #include <random>
 #include <set>
@@ -279,4 +281,44 @@ TEST_CASE("fuzzy collection: a shape whose every alignment is rejected is report
   for (const auto& e : r.edges) CHECK(e.source != 0);
   // The others still correspond sample by sample.
   for (ss::index_t i = 0; i < 6; ++i) CHECK(r.fuzzy.best_match(r.fuzzy.point(3, i), 5) == i);
+}
+
+namespace {
+/// The planted aligner that "dies" (throws) after `budget` alignments: an interrupted pairwise stage.
+struct interrupted_aligner {
+  planted_aligner inner;
+  mutable std::atomic<int> left;
+  ss::pair_alignment align(ss::index_t a, ss::index_t b) const {
+    if (left.fetch_sub(1) <= 0) throw std::runtime_error("interrupted");
+    return inner.align(a, b);
+  }
+};
+}  // namespace
+
+TEST_CASE("fuzzy collection: interrupting the pairwise stage and resuming gives the uninterrupted result") {
+  const int N = 10, K = 8;
+  const auto records = planted_records(N, K);
+  const planted_aligner aligner{K, {2, 3}};
+  const auto dir = std::filesystem::temp_directory_path() / "shapestruct_test_fuzzy_interrupt";
+  std::filesystem::remove_all(dir);
+  ss::fuzzy_collection_options o;
+  o.embedding.dimensions = 12;
+  o.threads = 2;
+  const auto whole = ss::compute_fuzzy_correspondences(records, aligner, o);  // no cache: the reference
+  o.cache_folder = dir;
+  const interrupted_aligner dying{aligner, 7};
+  CHECK_THROWS_AS((void)ss::compute_fuzzy_correspondences(records, dying, o), std::runtime_error);
+  const auto cached = std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator{});
+  CHECK(cached >= 1);
+  CHECK(cached <= 7);  // what finished before the interruption is on disk, nothing half-written
+  const auto resumed = ss::compute_fuzzy_correspondences(records, aligner, o);
+  CHECK(resumed.pairs_computed == resumed.pairs_aligned - std::size_t(cached));
+  REQUIRE(resumed.edges.size() == whole.edges.size());
+  for (std::size_t e = 0; e < whole.edges.size(); ++e) {
+    CHECK(resumed.edges[e].source == whole.edges[e].source);
+    CHECK(resumed.edges[e].target == whole.edges[e].target);
+    CHECK(resumed.edges[e].alternative == whole.edges[e].alternative);
+  }
+  CHECK((resumed.fuzzy.embedding().coordinates - whole.fuzzy.embedding().coordinates).cwiseAbs().maxCoeff() == 0.0f);
+  std::filesystem::remove_all(dir);
 }
