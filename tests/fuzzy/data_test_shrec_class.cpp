@@ -2,9 +2,9 @@
 // The SHREC'07 human class as one intrinsic collection (issue 13's CI data test): its 18 closed genus-0 shapes,
 // blended maps along the alignment graph, fuzzy correspondences, and on the benchmark's pairs of the class the
 // consistent blended maps and the best fuzzy correspondence, scored as run_bim_benchmark scores them (feature
-// points, geodesic / sqrt(area of the target)). Measured (run_fuzzy_benchmark --set shrec --classes 1):
-// consistent blended 1.000 within 0.25 with no flipped pair, best fuzzy 0.944, pairwise blended 0.767 (5 flips).
-// About 3 minutes on 2 cores. Skipped without $SHAPESTRUCT_DATA.
+// points, geodesic / sqrt(area of the target)). Measured with the defaults: consistent blended 1.000 within 0.25
+// with no flipped pair, best fuzzy 0.927 (the pairwise blended maps alone: 0.767, 5 flipped pairs; docs/fuzzy.md).
+// About 1 minute on 2 cores. Skipped without $SHAPESTRUCT_DATA.
 #include <algorithm>
 #include <filesystem>
 #include <map>
