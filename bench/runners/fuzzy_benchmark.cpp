@@ -162,18 +162,10 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
     ro.threads = threads;
     ro.record.metric = sample_metric::automatic;
     auto col = make_collection_records(files, ro);
-    // The class's intrinsic collection: its closed genus-0 shapes.
-    std::vector<shape_record> records;
-    std::vector<fs::path> kept;
-    std::map<std::string, index_t> index_of;
-    for (std::size_t i = 0; i < col.records.size(); ++i)
-      if (col.records[i].closed_genus0) {
-        index_of[col.records[i].name] = static_cast<index_t>(records.size());
-        records.push_back(col.records[i]);
-        kept.push_back(col.files[i]);
-      } else {
-        col.skipped.push_back({col.files[i], "not a closed genus-0 surface"});
-      }
+    keep_intrinsic_shapes(col);  // the class's intrinsic collection: its closed genus-0 shapes
+    const std::vector<shape_record>& records = col.records;
+    const std::vector<fs::path>& kept = col.files;
+    auto index_of = index_by_name(records);
     const double t_records = seconds_since(t0);
     for (const auto& s : col.skipped) std::cout << "  class " << cls << ": left out " << s.file.filename().string() << ": " << s.reason << "\n";
     intrinsic_aligner aligner(records, [&](index_t k) { return read_mesh(kept[std::size_t(k)]).mesh; });
@@ -283,17 +275,11 @@ int run_scape(const fs::path& data, const fs::path& out_dir, int threads) {
   ro.threads = threads;
   ro.cache_folder = out_dir / "cache" / "scape_records";
   auto col = make_collection_records(files, ro);
-  std::vector<shape_record> records;
-  std::vector<fs::path> kept;
-  std::map<std::string, index_t> index_of;
-  for (std::size_t i = 0; i < col.records.size(); ++i)
-    if (col.records[i].closed_genus0) {
-      index_of[col.records[i].name] = static_cast<index_t>(records.size());
-      records.push_back(col.records[i]);
-      kept.push_back(col.files[i]);
-    } else {
-      std::cout << "  left out " << col.files[i].filename().string() << ": not a closed genus-0 surface\n";
-    }
+  keep_intrinsic_shapes(col);
+  for (const auto& s : col.skipped) std::cout << "  left out " << s.file.filename().string() << ": " << s.reason << "\n";
+  const std::vector<shape_record>& records = col.records;
+  const std::vector<fs::path>& kept = col.files;
+  auto index_of = index_by_name(records);
   const double t_records = seconds_since(t0);
   intrinsic_aligner aligner(records, [&](index_t k) { return read_mesh(kept[std::size_t(k)]).mesh; });
   fuzzy_collection_options fo;

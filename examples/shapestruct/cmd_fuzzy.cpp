@@ -128,19 +128,10 @@ int run_fuzzy(const std::vector<std::string>& args) {
   const bool intrinsic = mode == "intrinsic" || (mode == "auto" && all_genus0);
   if (intrinsic) {
     // Intrinsic alignment needs closed genus-0 surfaces: the others are left out, by name.
-    std::vector<shape_record> keep;
-    std::vector<fs::path> keep_files;
-    for (std::size_t i = 0; i < col.records.size(); ++i)
-      if (col.records[i].closed_genus0 && !col.records[i].sample_vertex.empty() && col.records[i].sample_vertex[0] != no_index) {
-        keep.push_back(std::move(col.records[i]));
-        keep_files.push_back(col.files[i]);
-      } else {
-        col.skipped.push_back({col.files[i], "not a closed genus-0 surface (intrinsic mode); use --mode extrinsic"});
-        std::fprintf(stderr, "fuzzy: left out %s: not a closed genus-0 surface (intrinsic mode needs one; "
-                     "--mode extrinsic keeps it)\n", col.files[i].string().c_str());
-      }
-    col.records = std::move(keep);
-    col.files = std::move(keep_files);
+    const std::size_t before = col.skipped.size();
+    keep_intrinsic_shapes(col, "not a closed genus-0 surface (intrinsic mode needs one; --mode extrinsic keeps it)");
+    for (std::size_t i = before; i < col.skipped.size(); ++i)
+      std::fprintf(stderr, "fuzzy: left out %s: %s\n", col.skipped[i].file.string().c_str(), col.skipped[i].reason.c_str());
   }
   if (col.records.size() < 2) {
     std::fprintf(stderr, "fuzzy: fewer than two usable shapes in %s; nothing to correspond\n", pos[0].c_str());

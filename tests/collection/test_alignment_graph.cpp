@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "shapestruct/collection/alignment_graph.hpp"
+#include "geometry/geometry_test_util.hpp"
 
 using namespace shapestruct;
 
@@ -19,19 +20,7 @@ namespace {
 using edge_list = std::vector<std::pair<index_t, index_t>>;
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-template <class Fn>
-void expect_invalid(Fn&& fn, input_error reason, index_t element = -2) {
-  bool thrown = false;
-  try {
-    fn();
-  } catch (const invalid_input& e) {
-    thrown = true;
-    INFO("message: " << e.what());
-    CHECK(e.reason() == reason);
-    if (element != -2) CHECK(e.element() == element);
-  }
-  CHECK_MESSAGE(thrown, "expected invalid_input(" << to_string(reason) << ")");
-}
+using test::expect_invalid;  // tests/geometry/geometry_test_util.hpp
 
 std::vector<Eigen::VectorXd> random_descriptors(index_t n, index_t d, std::uint64_t seed) {
   std::mt19937_64 rng(seed);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "shapestruct/collection/edge_rank.hpp"
+#include "geometry/geometry_test_util.hpp"
 
 using namespace shapestruct;
 
@@ -19,19 +20,7 @@ namespace {
 
 using edge_list = std::vector<std::pair<index_t, index_t>>;
 
-template <class Fn>
-void expect_invalid(Fn&& fn, input_error reason, index_t element = -2) {
-  bool thrown = false;
-  try {
-    fn();
-  } catch (const invalid_input& e) {
-    thrown = true;
-    INFO("message: " << e.what());
-    CHECK(e.reason() == reason);
-    if (element != -2) CHECK(e.element() == element);
-  }
-  CHECK_MESSAGE(thrown, "expected invalid_input(" << to_string(reason) << ")");
-}
+using test::expect_invalid;  // tests/geometry/geometry_test_util.hpp
 
 edge_list path_graph(index_t n) {
   edge_list e;

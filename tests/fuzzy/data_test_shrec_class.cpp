@@ -32,16 +32,11 @@ TEST_CASE("fuzzy correspondences of the SHREC'07 human class: consistent blended
   for (int id = 1; id <= 20; ++id) files.push_back(shrec / "Meshes" / (std::to_string(id) + ".off"));
   collection_records_options ro;
   ro.threads = 2;
-  const auto col = make_collection_records(files, ro);
-  std::vector<shape_record> records;
-  std::vector<fs::path> kept;
-  std::map<std::string, index_t> index_of;
-  for (std::size_t i = 0; i < col.records.size(); ++i)
-    if (col.records[i].closed_genus0) {
-      index_of[col.records[i].name] = static_cast<index_t>(records.size());
-      records.push_back(col.records[i]);
-      kept.push_back(col.files[i]);
-    }
+  auto col = make_collection_records(files, ro);
+  keep_intrinsic_shapes(col);
+  const std::vector<shape_record>& records = col.records;
+  const std::vector<fs::path>& kept = col.files;
+  auto index_of = index_by_name(records);
   REQUIRE(records.size() >= 15);
   intrinsic_aligner aligner(records, [&](index_t k) { return read_mesh(kept[std::size_t(k)]).mesh; });
   fuzzy_collection_options fo;

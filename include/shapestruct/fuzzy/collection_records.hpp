@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <mutex>
 #include <set>
 #include <string>
@@ -106,6 +107,32 @@ struct collection_records_options {
     out.records.push_back(std::move(made[i]));
     out.files.push_back(files[i]);
   }
+  return out;
+}
+
+/// Keeps the records that intrinsic alignment can take (closed genus-0 surfaces sampled geodesically, see
+/// shape_record::closed_genus0) and moves the others to `skipped`, each with `reason`. Order is kept.
+inline void keep_intrinsic_shapes(collection_records& c,
+                                  const std::string& reason = "not a closed genus-0 surface (intrinsic mode)") {
+  std::vector<shape_record> records;
+  std::vector<std::filesystem::path> files;
+  for (std::size_t i = 0; i < c.records.size(); ++i) {
+    const auto& r = c.records[i];
+    if (r.closed_genus0 && !r.sample_vertex.empty() && r.sample_vertex[0] != no_index) {
+      records.push_back(std::move(c.records[i]));
+      files.push_back(c.files[i]);
+    } else {
+      c.skipped.push_back({c.files[i], reason});
+    }
+  }
+  c.records = std::move(records);
+  c.files = std::move(files);
+}
+
+/// Index of every record by its name.
+[[nodiscard]] inline std::map<std::string, index_t> index_by_name(const std::vector<shape_record>& records) {
+  std::map<std::string, index_t> out;
+  for (std::size_t i = 0; i < records.size(); ++i) out.emplace(records[i].name, static_cast<index_t>(i));
   return out;
 }
 
