@@ -217,8 +217,8 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
             << fmt(within(e_raw, 0.25), 3) << "," << fmt(std::min(mean_of(e_raw), mean_of(e_sym)), 4) << ","
             << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "\n";
       };
-      const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib);
       const blended_match_result<double> pairwise = aligner.match(ia, ib);
+      const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise);
       score("pairwise", pairwise.map.nearest);
       score("consistent_blended", cb.map.nearest);
       score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
@@ -323,8 +323,9 @@ int run_scape(const fs::path& data, const fs::path& out_dir, int threads) {
       csv << a << "," << b << "," << method << "," << fmt(mean_of(e_raw), 4) << "," << fmt(within(e_raw, 0.25), 3) << ","
           << fmt(std::min(mean_of(e_raw), mean_of(e_sym)), 4) << "," << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "\n";
     };
-    const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib);
-    score("pairwise", aligner.match(ia, ib).map.nearest);
+    const blended_match_result<double> pairwise = aligner.match(ia, ib);
+    const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise);
+    score("pairwise", pairwise.map.nearest);
     score("consistent_blended", cb.map.nearest);
     score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
     const fs::path st = data / "Results/Results_Corr_Scape" / ("BenchResult_BlendedMap_" + a + "_to_" + b + ".txt");

@@ -93,6 +93,17 @@ std::vector<ss::shape_record> planted_records(int N, int K) {
   return r;
 }
 
+/// The same graph, the same alternatives and a bit-identical embedding.
+void check_same_result(const ss::fuzzy_collection_result& a, const ss::fuzzy_collection_result& b) {
+  REQUIRE(a.edges.size() == b.edges.size());
+  for (std::size_t e = 0; e < a.edges.size(); ++e) {
+    CHECK(a.edges[e].source == b.edges[e].source);
+    CHECK(a.edges[e].target == b.edges[e].target);
+    CHECK(a.edges[e].alternative == b.edges[e].alternative);
+  }
+  CHECK((a.fuzzy.embedding().coordinates - b.fuzzy.embedding().coordinates).cwiseAbs().maxCoeff() == 0.0f);
+}
+
 }  // namespace
 
 TEST_CASE("correspondence matrix: C is row-stochastic and W symmetric") {
@@ -235,13 +246,7 @@ TEST_CASE("fuzzy collection: one and two threads give identical results, and a r
   const auto two = ss::compute_fuzzy_correspondences(records, aligner, o);
   CHECK(one.pairs_computed == one.pairs_aligned);
   CHECK(two.pairs_computed == 0);  // every alignment came from the cache
-  REQUIRE(one.edges.size() == two.edges.size());
-  for (std::size_t e = 0; e < one.edges.size(); ++e) {
-    CHECK(one.edges[e].source == two.edges[e].source);
-    CHECK(one.edges[e].target == two.edges[e].target);
-    CHECK(one.edges[e].alternative == two.edges[e].alternative);
-  }
-  CHECK((one.fuzzy.embedding().coordinates - two.fuzzy.embedding().coordinates).cwiseAbs().maxCoeff() == 0.0f);
+  check_same_result(one, two);
   CHECK((one.fuzzy.tau() - two.fuzzy.tau()).cwiseAbs().maxCoeff() == 0.0f);
   std::filesystem::remove_all(dir);
 }
@@ -313,12 +318,6 @@ TEST_CASE("fuzzy collection: interrupting the pairwise stage and resuming gives 
   CHECK(cached <= 7);  // what finished before the interruption is on disk, nothing half-written
   const auto resumed = ss::compute_fuzzy_correspondences(records, aligner, o);
   CHECK(resumed.pairs_computed == resumed.pairs_aligned - std::size_t(cached));
-  REQUIRE(resumed.edges.size() == whole.edges.size());
-  for (std::size_t e = 0; e < whole.edges.size(); ++e) {
-    CHECK(resumed.edges[e].source == whole.edges[e].source);
-    CHECK(resumed.edges[e].target == whole.edges[e].target);
-    CHECK(resumed.edges[e].alternative == whole.edges[e].alternative);
-  }
-  CHECK((resumed.fuzzy.embedding().coordinates - whole.fuzzy.embedding().coordinates).cwiseAbs().maxCoeff() == 0.0f);
+  check_same_result(resumed, whole);
   std::filesystem::remove_all(dir);
 }

@@ -64,11 +64,11 @@ struct consistent_blended_map {
   std::vector<double> consistency;    ///< score_f of every group (eq. 4.10)
 };
 
-/// Computes the consistent blended map of shapes a -> b. \throws as intrinsic_aligner::match.
+/// The consistent blended map of shapes a -> b chosen among the blended maps of `r`, a match of a -> b by
+/// `aligner` (intrinsic_aligner::match), so a caller that also wants the pairwise map matches once.
 [[nodiscard]] inline consistent_blended_map make_consistent_blended_map(const intrinsic_aligner& aligner,
                                                                         const fuzzy_correspondence& f, index_t a,
-                                                                        index_t b) {
-  const blended_match_result<double> r = aligner.match(a, b);
+                                                                        index_t b, const blended_match_result<double>& r) {
   const pair_alignment alts = aligner.alignment_from(a, b, r);
   consistent_blended_map out;
   out.pairwise_group = r.selected;
@@ -83,6 +83,13 @@ struct consistent_blended_map {
   if (out.group == no_index) out.group = r.selected;
   out.map = r.blended[std::size_t(out.group)].map;
   return out;
+}
+
+/// Computes the consistent blended map of shapes a -> b. \throws as intrinsic_aligner::match.
+[[nodiscard]] inline consistent_blended_map make_consistent_blended_map(const intrinsic_aligner& aligner,
+                                                                        const fuzzy_correspondence& f, index_t a,
+                                                                        index_t b) {
+  return make_consistent_blended_map(aligner, f, a, b, aligner.match(a, b));
 }
 
 }  // namespace shapestruct
