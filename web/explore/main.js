@@ -229,8 +229,9 @@ async function sort() {
     timings.lastQueryMs = roundTrip;
     timings.lastQuerySeconds = answer.seconds;
     clearError();
-    await refreshAll();  // examples first, since region alignment of the ROI pane follows the new query
-    await showPage();
+    // The new first page and the examples (whose region alignment follows the new query); showPage asks for
+    // the details of both in one request.
+    await Promise.all([showPage(), ...roi.examples.map((e) => colourExample(e))]);
     timings.lastSortMs = performance.now() - started;
   } catch (err) {
     showError(err);

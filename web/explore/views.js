@@ -138,7 +138,34 @@ export class View {
       p.set(positions[v], positions[v + 1], positions[v + 2]).applyMatrix4(world);
       r2 = Math.max(r2, p.distanceToSquared(centre));
     }
-    this.frame = { centre, radius: Math.sqrt(r2) || 1 };
+    const corners = [];
+    for (const x of [box.min.x, box.max.x]) {
+      for (const y of [box.min.y, box.max.y]) {
+        for (const z of [box.min.z, box.max.z]) corners.push(new THREE.Vector3(x, y, z).sub(centre));
+      }
+    }
+    this.frame = { centre, radius: Math.sqrt(r2) || 1, corners, fit: null };
+  }
+
+  /**
+   * Camera distance that fits the bounding box, computed for the view direction at the time the shape was
+   * framed and then kept: a distance recomputed every frame would make the shape swell and shrink while the
+   * user orbits. The box fits tighter than the bounding sphere, which wastes much of a tall narrow view.
+   */
+  fitDistance(aspect, dir, right, up) {
+    const f = this.frame;
+    if (f.fit && Math.abs(f.fit.aspect - aspect) < 0.01 * aspect) return f.fit.distance;
+    const tanV = Math.tan(THREE.MathUtils.degToRad(FOV / 2));
+    const tanH = tanV * aspect;
+    let distance = 0;
+    for (const c of f.corners) {
+      const z = c.dot(dir);
+      distance = Math.max(distance, z + Math.abs(c.dot(right)) / tanH, z + Math.abs(c.dot(up)) / tanV);
+    }
+    // Never inside the bounding sphere (near plane), and a margin so the silhouette does not touch the edges.
+    distance = Math.max(distance * 1.08, 1.2 * f.radius);
+    f.fit = { aspect, distance };
+    return distance;
   }
 
   /** Places the camera from the orbit state, framing the shape's sphere about its orbit centre. */
@@ -146,16 +173,13 @@ export class View {
     const { centre, radius } = this.frame;
     const o = this.orbit;
     this.camera.aspect = aspect;
-    const halfV = THREE.MathUtils.degToRad(FOV / 2);
-    const halfH = Math.atan(Math.tan(halfV) * aspect);
-    const fit = (radius / Math.sin(Math.min(halfV, halfH))) * 1.02;
-    const distance = fit * o.zoom;
     const dir = new THREE.Vector3(Math.sin(o.phi) * Math.sin(o.theta), Math.cos(o.phi),
       Math.sin(o.phi) * Math.cos(o.theta));
-    const target = centre.clone();
-    // Pan in the camera's own right/up directions, scaled by the shape's radius.
     const right = new THREE.Vector3(0, 1, 0).cross(dir).normalize();
     const up = dir.clone().cross(right).normalize();
+    const distance = this.fitDistance(aspect, dir, right, up) * o.zoom;
+    const target = centre.clone();
+    // Pan in the camera's own right/up directions, scaled by the shape's radius.
     target.addScaledVector(right, o.panX * radius).addScaledVector(up, o.panY * radius);
     this.camera.position.copy(target).addScaledVector(dir, distance);
     this.camera.up.set(0, 1, 0);
