@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <numeric>
 #include <random>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +16,7 @@
 
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/core/types.hpp"
+#include "shapestruct/detail/nearest_fraction.hpp"
 #include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/fuzzy/diffusion_embedding.hpp"
 
@@ -147,52 +149,13 @@ class fuzzy_correspondence {
   if (options.tau_reference_points < 1)
     throw invalid_input(input_error::bad_parameter, no_index,
                         std::string(who) + ": tau_reference_points must be >= 1");
-  const index_t n = e.points();
-  std::vector<index_t> shape_of(static_cast<std::size_t>(n));
-  for (index_t k = 0; k < e.shapes(); ++k)
-    for (index_t p = e.offset(k); p < e.offset(k + 1); ++p) shape_of[std::size_t(p)] = k;
-  std::vector<index_t> ref(static_cast<std::size_t>(n));
-  std::iota(ref.begin(), ref.end(), index_t{0});
-  if (n > options.tau_reference_points) {
-    std::mt19937_64 rng(options.seed);
-    for (index_t i = n - 1; i > 0; --i) {  // Fisher-Yates with raw engine output: the same on every platform
-      const index_t j = static_cast<index_t>(rng() % static_cast<std::uint64_t>(i + 1));
-      std::swap(ref[std::size_t(i)], ref[std::size_t(j)]);
-    }
-    ref.resize(static_cast<std::size_t>(options.tau_reference_points));
-    std::sort(ref.begin(), ref.end());
-  }
-  const index_t R = static_cast<index_t>(ref.size());
-  Eigen::MatrixXf Y(R, e.dimensions());
-  for (index_t r = 0; r < R; ++r) Y.row(r) = e.coordinates.row(ref[std::size_t(r)]);
-  const Eigen::VectorXf y2 = Y.rowwise().squaredNorm();
-  Eigen::VectorXf tau(n);
-  constexpr index_t block = 256;
-  const index_t blocks = (n + block - 1) / block;
-  const unsigned workers = detail::resolve_threads(options.threads, who);
-  detail::parallel_for(blocks, workers, [&](index_t b) {
-    const index_t p0 = b * block, m = std::min(block, n - p0);
-    const Eigen::MatrixXf X = e.coordinates.middleRows(p0, m);
-    Eigen::MatrixXf D2 = (-2.0f * X * Y.transpose()).eval();
-    D2.colwise() += X.rowwise().squaredNorm();
-    D2.rowwise() += y2.transpose();
-    std::vector<float> d;
-    d.reserve(static_cast<std::size_t>(R));
-    for (index_t i = 0; i < m; ++i) {
-      d.clear();
-      const index_t own = shape_of[std::size_t(p0 + i)];
-      for (index_t r = 0; r < R; ++r)
-        if (shape_of[std::size_t(ref[std::size_t(r)])] != own) d.push_back(std::max(0.0f, D2(i, r)));
-      if (d.empty()) {
-        tau[p0 + i] = 0;
-        continue;
-      }
-      const auto rank = static_cast<std::size_t>(
-          std::clamp<double>(std::ceil(options.tau_fraction * double(d.size())), 1.0, double(d.size())));
-      std::nth_element(d.begin(), d.begin() + std::ptrdiff_t(rank - 1), d.end());
-      tau[p0 + i] = std::sqrt(d[rank - 1]);
-    }
-  });
+  Eigen::VectorXf tau = Eigen::VectorXf::Zero(e.points());
+  detail::for_each_nearest_fraction(
+      e.coordinates, e.offsets, options.tau_fraction, options.tau_reference_points, options.seed,
+      detail::resolve_threads(options.threads, who), [&tau](index_t p, std::span<const float> nearest) {
+        // nth_element put the kth smallest last: tau is its distance
+        if (!nearest.empty()) tau[p] = std::sqrt(nearest.back());
+      });
   return tau;
 }
 

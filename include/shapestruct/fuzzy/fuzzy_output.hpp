@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: MIT
+// fuzzy_output: the output folder of `shapestruct fuzzy` read back (the shapes, their records and f).
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+#include "shapestruct/collection/collection_files.hpp"
+#include "shapestruct/collection/shape_record.hpp"
+#include "shapestruct/core/errors.hpp"
+#include "shapestruct/fuzzy/fuzzy_correspondence.hpp"
+#include "shapestruct/fuzzy/fuzzy_files.hpp"
+#include "shapestruct/io/json.hpp"
+
+namespace shapestruct {
+
+/// A fuzzy collection as `shapestruct fuzzy` leaves it on disk (docs/fuzzy.md, "The output folder").
+struct fuzzy_output {
+  std::filesystem::path folder;
+  std::string mode;                          ///< "intrinsic" or "extrinsic"
+  std::vector<std::filesystem::path> files;  ///< every shape's input file, in the collection's order
+  std::vector<shape_record> records;         ///< name, samples, nearest sample of every vertex, ...
+  fuzzy_correspondence fuzzy;                ///< f, from fuzzy.bin
+  [[nodiscard]] index_t shapes() const noexcept { return static_cast<index_t>(records.size()); }
+};
+
+/// Reads collection.json, records/NAME.rec of every shape and fuzzy.bin from `folder`.
+/// \throws io_error (cannot_open) naming the first missing file (so a folder that is not fuzzy output is refused
+///         with the file it lacks), (syntax / bad_value) for a damaged or inconsistent file.
+[[nodiscard]] inline fuzzy_output read_fuzzy_output(const std::filesystem::path& folder) {
+  namespace fs = std::filesystem;
+  fuzzy_output out;
+  out.folder = folder;
+  for (const char* needed : {"collection.json", "fuzzy.bin"})
+    if (!fs::is_regular_file(folder / needed))
+      throw io_error(file_error::cannot_open, (folder / needed).string(), 0, 0,
+                     std::string("missing: ") + needed + " (is this the output folder of `shapestruct fuzzy`?)");
+  const std::string manifest_path = (folder / "collection.json").string();
+  const json_value manifest = read_json(manifest_path);
+  const json_value* mode = manifest.find("mode");
+  const json_value* shapes = manifest.find("shapes");
+  if (mode == nullptr || shapes == nullptr)
+    throw io_error(file_error::syntax, manifest_path, 0, 0, "has no \"mode\" or no \"shapes\"");
+  out.mode = mode->as_string();
+  for (const auto& s : shapes->as_array()) {
+    const json_value* name = s.find("name");
+    const json_value* file = s.find("file");
+    if (name == nullptr || file == nullptr)
+      throw io_error(file_error::syntax, manifest_path, 0, 0, "a shape without \"name\" or \"file\"");
+    const fs::path record = folder / "records" / (name->as_string() + ".rec");
+    if (!fs::is_regular_file(record))
+      throw io_error(file_error::cannot_open, record.string(), 0, 0, "missing: the record of shape '" + name->as_string() + "'");
+    out.records.push_back(read_shape_record(record));
+    out.files.emplace_back(file->as_string());
+  }
+  out.fuzzy = read_fuzzy_correspondence(folder / "fuzzy.bin");
+  if (out.fuzzy.shapes() != out.shapes())
+    throw io_error(file_error::bad_value, (folder / "fuzzy.bin").string(), 0, 0,
+                   "holds " + std::to_string(out.fuzzy.shapes()) + " shapes, collection.json " + std::to_string(out.shapes()));
+  for (index_t k = 0; k < out.shapes(); ++k)
+    if (out.fuzzy.embedding().samples_of(k) != out.records[std::size_t(k)].sample_count())
+      throw io_error(file_error::bad_value, (folder / "fuzzy.bin").string(), 0, 0,
+                     "shape '" + out.records[std::size_t(k)].name + "' has " +
+                         std::to_string(out.fuzzy.embedding().samples_of(k)) + " samples, its record " +
+                         std::to_string(out.records[std::size_t(k)].sample_count()));
+  return out;
+}
+
+}  // namespace shapestruct
