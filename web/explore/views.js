@@ -45,6 +45,42 @@ export class OrbitState {
   }
 }
 
+// The per-pixel overlay (painting.js): an RGBA 3D texture over the shape's box, sRGB colour with alpha =
+// coverage, mixed over the base colour at the surface point's model coordinates.
+const OVERLAY_GLSL = `
+uniform highp sampler3D overlayMap;
+uniform vec3 overlayOrigin;
+uniform vec3 overlayScale;
+varying vec3 vOverlayPos;
+void applyOverlay(inout vec3 colour) {
+  vec4 o = texture(overlayMap, (vOverlayPos - overlayOrigin) * overlayScale);
+  vec3 linear = mix(o.rgb / 12.92, pow((o.rgb + 0.055) / 1.055, vec3(2.4)), step(0.04045, o.rgb));
+  colour = mix(colour, linear, o.a);
+}`;
+
+// A transparent 1x1x1 overlay, shared by every view that has none (no region, highlight or variance yet).
+let empty = null;
+function emptyOverlay() {
+  if (!empty) {
+    empty = new THREE.Data3DTexture(new Uint8Array(4), 1, 1, 1);
+    empty.needsUpdate = true;
+    empty.dispose = () => {};  // shared: never released by one view
+  }
+  return empty;
+}
+
+// Corner positions of the unindexed mesh, once per shape (shared by its views in both panes).
+const corners = new WeakMap();
+function cornerPositions(shapeData) {
+  if (!corners.has(shapeData)) {
+    const { positions, faces } = shapeData;
+    const out = new Float32Array(faces.length * 3);
+    for (let i = 0; i < faces.length; ++i) out.set(positions.subarray(3 * faces[i], 3 * faces[i] + 3), 3 * i);
+    corners.set(shapeData, out);
+  }
+  return corners.get(shapeData);
+}
+
 /** One 3D view: a scene with at most one shape, lit from the camera, drawn into `element`'s rectangle. */
 export class View {
   /**
@@ -73,40 +109,91 @@ export class View {
     this.frame = { centre: new THREE.Vector3(), radius: 1 };
   }
 
-  /** Shows `shapeData` (from api.getMesh) with the given vertex colours; null clears the view. */
-  setShape(shapeData, colours) {
+  /**
+   * Shows `shapeData` (from api.getMesh) with `base` colours (linear RGB per corner of each face,
+   * painting.baseColours) and no overlay; null clears the view.
+   */
+  setShape(shapeData, base = null) {
     if (this.mesh) {
       this.scene.remove(this.mesh);
       this.mesh.geometry.dispose();
       this.mesh.material.dispose();
+      this.uniforms.overlayMap.value.dispose();
       this.mesh = null;
     }
     this.shapeData = shapeData;
     if (!shapeData) return;
-    // Positions and indices wrap the cached typed arrays (no copy on the CPU side); each view has its own
-    // colour buffer because the same shape is coloured differently in the ROI pane and in the results.
+    // Unindexed, so each face has its own corners and a part colour per face stays exact; the positions are
+    // shared between the views of one shape. Each view has its own colours: the same shape is coloured
+    // differently in the ROI pane and in the results.
     const geometry = new THREE.BufferGeometry();
-    geometry.setAttribute('position', new THREE.BufferAttribute(shapeData.positions, 3));
-    geometry.setIndex(new THREE.BufferAttribute(shapeData.faces, 1));
-    geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3));
+    geometry.setAttribute('position', new THREE.BufferAttribute(cornerPositions(shapeData), 3));
+    geometry.setAttribute('color', new THREE.BufferAttribute(base.slice(), 3));
     geometry.computeBoundingSphere();
     geometry.computeBoundingBox();
+    const uniforms = {
+      overlayMap: { value: emptyOverlay() },
+      overlayOrigin: { value: new THREE.Vector3() },
+      overlayScale: { value: new THREE.Vector3(1, 1, 1) },
+    };
+    this.uniforms = uniforms;
+    this.overlayDims = null;
     // Flat shading: the shapes are part soups with sharp creases, where averaged normals smear the shading.
     // Double-sided: soups are not closed and an affine alignment may mirror a shape.
     const material = new THREE.MeshStandardMaterial({
       vertexColors: true, flatShading: true, roughness: 0.75, metalness: 0, side: THREE.DoubleSide,
     });
+    material.onBeforeCompile = (shader) => {
+      Object.assign(shader.uniforms, uniforms);
+      shader.vertexShader = `varying vec3 vOverlayPos;\n${shader.vertexShader}`.replace('#include <begin_vertex>',
+        '#include <begin_vertex>\nvOverlayPos = position;');
+      shader.fragmentShader = `${OVERLAY_GLSL}\n${shader.fragmentShader}`.replace('#include <color_fragment>',
+        '#include <color_fragment>\napplyOverlay(diffuseColor.rgb);');
+    };
     this.mesh = new THREE.Mesh(geometry, material);
     this.mesh.matrixAutoUpdate = false;
     this.scene.add(this.mesh);
     this.updateFrame();
   }
 
-  setColours(colours) {
+  /** New base colours for the shape shown (as setShape). */
+  setBase(base) {
     if (!this.mesh) return;
     const attribute = this.mesh.geometry.getAttribute('color');
-    attribute.array.set(colours);
+    attribute.array.set(base);
     attribute.needsUpdate = true;
+  }
+
+  /**
+   * The per-sample overlay: `bytes` (RGBA per voxel, painting.overlayBytes) on `volume`'s grid
+   * (painting.sampleVolume); null, null = none.
+   */
+  setOverlay(volume, bytes) {
+    if (!this.mesh) return;
+    const u = this.uniforms;
+    if (!volume) {
+      if (this.overlayDims) u.overlayMap.value.dispose();
+      u.overlayMap.value = emptyOverlay();
+      this.overlayDims = null;
+      return;
+    }
+    if (this.overlayDims !== volume.dims) {
+      if (this.overlayDims) u.overlayMap.value.dispose();
+      const texture = new THREE.Data3DTexture(bytes.slice(), ...volume.dims);
+      texture.format = THREE.RGBAFormat;
+      texture.type = THREE.UnsignedByteType;
+      texture.minFilter = THREE.LinearFilter;
+      texture.magFilter = THREE.LinearFilter;
+      texture.unpackAlignment = 1;
+      texture.needsUpdate = true;
+      u.overlayMap.value = texture;
+      u.overlayOrigin.value.set(...volume.origin);
+      u.overlayScale.value.set(...volume.dims.map((n) => 1 / (n * volume.size)));
+      this.overlayDims = volume.dims;
+    } else {
+      u.overlayMap.value.image.data.set(bytes);
+      u.overlayMap.value.needsUpdate = true;
+    }
   }
 
   /** A 3x4 row-major affine matrix (API.md) as the mesh's model matrix; null = identity. */
