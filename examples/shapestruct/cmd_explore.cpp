@@ -336,9 +336,8 @@ int run_explore(const std::vector<std::string>& args) {
   const fs::path exe_dir = fs::canonical("/proc/self/exe").parent_path();
   const fs::path page_dir = find_page_dir(page_option, exe_dir.c_str());
   explore_service service(read_fuzzy_output(pos[0]), read_template_output(templates_dir), int(threads), int(page_size));
-  (void)service.explorer().variance();  // the first requests should not wait for these
-  (void)service.explorer().canonical_reference();
-  std::fprintf(stderr, "explore: %ld shapes loaded, variance and canonical view computed in %.2f s\n",
+  (void)service.explorer().canonical_reference();  // the first requests should not wait for it
+  std::fprintf(stderr, "explore: %ld shapes loaded, canonical view computed in %.2f s\n",
                long(service.explorer().shapes()),
                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 

@@ -31,8 +31,8 @@ struct collection_explorer_options {
   std::size_t cached_regions = 64;
 };
 
-/// One collection loaded for exploration: owns f and the shape records, computes the variance and the canonical
-/// view once (on first use), and answers region queries, facet rankings and per-shape details. All member
+/// One collection loaded for exploration: owns f and the shape records, computes each shape's variance and the
+/// canonical view once (on first use), and answers region queries, facet rankings and per-shape details. All member
 /// functions are const and may be called from several threads at once (a server's request handlers).
 class collection_explorer {
  public:
@@ -50,15 +50,18 @@ class collection_explorer {
   [[nodiscard]] std::span<const shape_record> records() const noexcept { return records_; }
   [[nodiscard]] index_t shapes() const noexcept { return f_.shapes(); }
 
-  /// sample_variance of every embedded point (computed on first use).
-  [[nodiscard]] const Eigen::VectorXf& variance() const {
-    std::call_once(variance_once_, [this] { variance_ = sample_variance(f_.embedding(), options_.variance); });
-    return variance_;
-  }
-  /// The variance of shape k's samples, in [0, 1].
+  /// The variance of shape k's samples, in [0, 1] (shape_variance; computed on first request, then kept: only
+  /// the shapes a user looks at cost anything).
   [[nodiscard]] Eigen::VectorXf variance(index_t k) const {
     check_shape(k);
-    return variance().segment(f_.embedding().offset(k), f_.embedding().samples_of(k));
+    {
+      std::lock_guard lock(cache_mutex_);
+      if (auto it = variance_.find(k); it != variance_.end()) return it->second;
+    }
+    Eigen::VectorXf v = shape_variance(f_.embedding(), k, options_.variance);
+    std::lock_guard lock(cache_mutex_);
+    variance_.emplace(k, v);
+    return v;
   }
 
   [[nodiscard]] index_t canonical_reference() const {
@@ -142,8 +145,8 @@ class collection_explorer {
   fuzzy_correspondence f_;
   std::vector<shape_record> records_;
   collection_explorer_options options_;
-  mutable std::once_flag variance_once_, canonical_once_;
-  mutable Eigen::VectorXf variance_;
+  mutable std::once_flag canonical_once_;
+  mutable std::map<index_t, Eigen::VectorXf> variance_;
   mutable index_t reference_ = 0;
   mutable std::vector<affine_transform> canonical_;
   mutable std::mutex cache_mutex_;
