@@ -11,8 +11,9 @@
 // variance colouring and both alignments, and checks every screenshot shows rendered shapes.
 // Prints `SHAPESTRUCT_SKIP: <reason>` and exits 0 when Chromium or playwright-core is missing (CTest: skipped).
 //
-// Development: --url URL drives an already running server instead (no --cli needed; ground truth then comes
-// from the API's face_labels, so that server must serve part labels).
+// Development: --page-dir DIR is passed on to `shapestruct explore` (a build whose page is elsewhere);
+// --url URL drives an already running server instead (no --cli needed; ground truth then comes from the API's
+// face_labels, so that server must serve part labels).
 
 import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -28,9 +29,10 @@ const VIEWPORT = { width: 1600, height: 1000 };
 // Arguments, skipping, failing
 
 function parseArgs(argv) {
-  const args = { cli: null, nodeModules: null, work: null, screens: null, url: null, count: 40, seed: 3 };
+  const args = { cli: null, nodeModules: null, work: null, screens: null, url: null, pageDir: null, count: 40,
+    seed: 3 };
   const names = { '--cli': 'cli', '--node-modules': 'nodeModules', '--work': 'work', '--screens': 'screens',
-    '--url': 'url', '--count': 'count', '--seed': 'seed' };
+    '--url': 'url', '--page-dir': 'pageDir', '--count': 'count', '--seed': 'seed' };
   for (let i = 0; i < argv.length; i += 2) {
     const key = names[argv[i]];
     if (!key || i + 1 >= argv.length) usage(`unknown or incomplete argument '${argv[i]}'`);
@@ -76,8 +78,9 @@ function run(cli, args) {
 }
 
 /** Starts `shapestruct explore`; resolves {child, url} once it printed its address. */
-function startServer(cli, fuzzyDir) {
-  const child = spawn(cli, ['explore', fuzzyDir, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
+function startServer(cli, fuzzyDir, pageDir) {
+  const extra = pageDir ? ['--page-dir', pageDir] : [];
+  const child = spawn(cli, ['explore', fuzzyDir, '--port', '0', ...extra], { stdio: ['ignore', 'pipe', 'pipe'] });
   let stderr = '';
   child.stderr.on('data', (d) => (stderr += d));
   return new Promise((resolve, reject) => {
@@ -222,7 +225,7 @@ async function main() {
       timings.generateSeconds = run(args.cli, ['generate', 'chairs', String(args.count), '-o', chairsDir, '--seed',
         String(args.seed)]);
       timings.fuzzySeconds = run(args.cli, ['fuzzy', chairsDir, '-o', fuzzyDir, '--quiet']);
-      server = await startServer(args.cli, fuzzyDir);
+      server = await startServer(args.cli, fuzzyDir, args.pageDir);
       baseUrl = server.url;
       log(`server ${baseUrl} (pid ${server.child.pid})`);
       const addresses = listeningAddresses(server.port);
@@ -378,6 +381,30 @@ async function main() {
     await page.click('[data-testid=align-region]');
     check((await page.evaluate(() => window.explorer.modes().align)) === 'region', 'align to region did not turn on');
     await screenshot(page, args.screens, '6-region', { results: tiles });
+    // One camera for all tiles: a drag in a tile turns the shared orbit.
+    const before = await page.evaluate(() => window.explorer.camera());
+    const firstTile = await boxOf('.tile');
+    await page.mouse.move(firstTile.x + firstTile.width / 2, firstTile.y + firstTile.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(firstTile.x + firstTile.width / 2 + 90, firstTile.y + firstTile.height / 2 + 10,
+      { steps: 5 });
+    await page.mouse.up();
+    const after = await page.evaluate(() => window.explorer.camera());
+    check(Math.abs(after.theta - before.theta) > 0.3, `dragging a tile did not orbit the results (${before.theta} -> ${after.theta})`);
+    await screenshot(page, args.screens, '7-orbited', { results: tiles });
+
+    // Paging: the second page shows the next shapes of the ranking.
+    await page.click('[data-testid=next-page]');
+    await page.evaluate(() => window.explorer.settled());
+    const paged = await page.evaluate(() => window.explorer.page());
+    const size = collection.page_size;
+    check(paged.page === 1 && JSON.stringify(paged.shapes) === JSON.stringify(ranking.slice(size, 2 * size)),
+      `page 2 does not show ranks ${size + 1}-${2 * size}`);
+    const shown = await page.locator('.tile:not([hidden])').evaluateAll((els) => els.map((e) => Number(e.dataset.shape)));
+    check(JSON.stringify(shown) === JSON.stringify(paged.shapes), 'the tiles of page 2 are not its shapes');
+    await page.click('[data-testid=prev-page]');
+    await page.evaluate(() => window.explorer.settled());
+
     const finalError = await page.evaluate(() => window.explorer.error());
     check(!finalError, `the page shows an error: ${finalError}`);
     check(pageErrors.length === 0, `errors in the page: ${pageErrors.join('; ')}`);

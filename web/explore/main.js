@@ -412,6 +412,7 @@ const explorer = {
   examples: () => roi.examples.map((e) => e.shape),
   page: () => ({ page: state.page, pages: pageCount(), shapes: pageShapes() }),
   modes: () => ({ colour: state.colourMode, align: state.alignMode }),
+  camera: () => ({ theta: results.orbit.theta, phi: results.orbit.phi, zoom: results.orbit.zoom }),
   error: () => state.error,
   /** Resolves when no request is in flight and the frame after that has been drawn. */
   async settled() {
