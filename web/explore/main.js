@@ -25,7 +25,13 @@ const timings = { firstRenderMs: null, lastQueryMs: null, lastQuerySeconds: null
 
 // Ask for the collection first: the request overlaps the WebGL set-up below (slow with software GL).
 const collectionRequest = api.getCollection();
-const renderer = new ViewRenderer($('#gl'));
+let renderer;
+try {
+  renderer = new ViewRenderer($('#gl'));
+} catch (err) {
+  showError(new Error(`this browser cannot draw the shapes: WebGL 2 is not available (${err.message})`));
+  throw err;
+}
 const results = new ResultsPane({
   grid: $('#grid'),
   clip: $('#results-scroll'),
@@ -120,11 +126,14 @@ function requestDetails(shapes) {
   }
 }
 
-/** (Re)draws one results tile: mesh, colours, alignment. Stale answers (the tile moved on) are dropped. */
+/**
+ * (Re)draws one results tile: mesh, colours, alignment. Only the latest call for a tile applies its answer:
+ * a slow one (a variance fetch) must not overwrite what a later mode change or page drew.
+ */
 async function updateTile(tile) {
   const shape = tile.shape;
   if (shape === null) return;
-  const token = tile.token;
+  const token = ++tile.token;
   const mesh = await api.getMesh(shape);
   const [colours, alignment] = await Promise.all([coloursFor(shape, mesh, null), alignmentFor(shape)]);
   if (token !== tile.token) return;
@@ -144,9 +153,11 @@ async function loadExample(example) {
 
 async function colourExample(example, mesh = example.mesh) {
   if (!mesh) return;
+  const revision = ++example.revision;
   const [colours, alignment] = await Promise.all([coloursFor(example.shape, mesh, example.selected),
     alignmentFor(example.shape)]);
-  if (!roi.examples.includes(example)) return;  // removed meanwhile
+  // Removed meanwhile, or a later call (the next brush dab, a mode change) has drawn it already.
+  if (!roi.examples.includes(example) || revision !== example.revision) return;
   if (example.view.shapeData !== mesh) {
     example.view.setShape(mesh, colours.base);
     example.meshReady(mesh);

@@ -10,7 +10,7 @@ const GAP = 8;         // px, as in style.css
 class Tile {
   constructor(pane) {
     this.shape = null;
-    this.token = 0;  // bumps whenever the tile is given another shape, so a late fetch cannot overwrite it
+    this.token = 0;  // bumps with every new shape or redraw, so a late answer cannot overwrite a newer one
     this.element = document.createElement('div');
     this.element.className = 'tile';
     this.element.dataset.testid = 'tile';

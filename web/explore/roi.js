@@ -18,6 +18,7 @@ export class Example {
     this.shape = shape;
     this.selected = new Set();
     this.mesh = null;  // api.getMesh data once loaded
+    this.revision = 0;  // main.js draws only the latest colouring of this example
     this.diagonal = 1;
     this.element = document.createElement('article');
     this.element.className = 'example';
