@@ -11,6 +11,11 @@ import { baseColours, overlayBytes, sampleVolume, partCss, varianceCss } from '.
 
 const $ = (selector) => document.querySelector(selector);
 
+const formatSeconds = (t) => (t < 1 ? `${(1000 * t).toFixed(t < 0.01 ? 1 : 0)} ms` : `${t.toFixed(2)} s`);
+
+/** A hint for the user (a missing step), not a failure: shown, not logged. */
+class UserError extends Error {}
+
 const state = {
   collection: null,   // GET /api/collection
   order: [],          // shape indices in display order: collection order until the first sort
@@ -230,9 +235,10 @@ function addExample(shape) {
 async function sort() {
   const regions = roi.regions();
   if (!regions.length) {
-    showError(new Error('Paint a region on an example first: add one with "use as example", then drag on it.'));
+    showError(new UserError('Paint a region on an example first: add one with "use as example", then drag on it.'));
     return;
   }
+  clearError();
   const started = performance.now();
   setBusy(true);
   try {
@@ -272,7 +278,7 @@ function setColourMode(mode) {
 
 function setAlignMode(mode) {
   if (mode === 'region' && !state.query) {
-    showError(new Error('Align to region needs a sort first: paint a region and press Sort.'));
+    showError(new UserError('Align to region needs a sort first: paint a region and press Sort.'));
     return;
   }
   state.alignMode = mode;
@@ -310,7 +316,7 @@ function updateStatus() {
   ];
   if (state.query) {
     parts.push(`sorted by ${state.query.regions.length} region${state.query.regions.length === 1 ? '' : 's'}` +
-      ` - query ${state.query.seconds.toFixed(3)} s on the server, ${Math.round(timings.lastQueryMs)} ms round trip`);
+      ` - query ${formatSeconds(state.query.seconds)} on the server, ${Math.round(timings.lastQueryMs)} ms round trip`);
   } else {
     parts.push('collection order');
   }
@@ -323,7 +329,7 @@ function showError(err) {
   const el = $('[data-testid=error]');
   el.textContent = state.error;
   el.hidden = false;
-  console.error(err);
+  if (!(err instanceof UserError)) console.error(err);
 }
 
 function clearError() {
