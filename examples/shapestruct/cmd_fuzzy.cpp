@@ -18,6 +18,7 @@
 #include "shapestruct/fuzzy/fuzzy_collection.hpp"
 #include "shapestruct/fuzzy/fuzzy_files.hpp"
 #include "shapestruct/fuzzy/fuzzy_maps.hpp"
+#include "shapestruct/fuzzy/fuzzy_output.hpp"
 #include "shapestruct/fuzzy/intrinsic_alignment.hpp"
 #include "shapestruct/io/json.hpp"
 #include "shapestruct/io/read_mesh.hpp"
@@ -250,26 +251,18 @@ int run_fuzzy_map(const std::vector<std::string>& args) {
   for (const char* needed : {"collection.json", "fuzzy.bin"})
     if (!fs::exists(dir / needed))
       throw cli::usage_error(std::string("'") + pos[0] + "' is not the output of `shapestruct fuzzy`: " + needed + " is missing");
-  const json_value manifest = read_json((dir / "collection.json").string());
-  std::vector<shape_record> records;
-  std::vector<fs::path> files;
+  const fuzzy_output collection = read_fuzzy_output(dir);
+  const auto& records = collection.records;
+  const auto& files = collection.files;
+  const fuzzy_correspondence& f = collection.fuzzy;
   std::map<std::string, index_t> index_of;
-  for (const auto& s : manifest.find("shapes")->as_array()) {
-    const std::string name = s.find("name")->as_string();
-    index_of[name] = static_cast<index_t>(records.size());
-    records.push_back(read_shape_record(dir / "records" / (name + ".rec")));
-    files.emplace_back(s.find("file")->as_string());
-  }
+  for (index_t k = 0; k < collection.shapes(); ++k) index_of[records[std::size_t(k)].name] = k;
   for (const auto& n : {pos[1], pos[2]})
     if (!index_of.count(n)) throw cli::usage_error("shape '" + n + "' is not in the collection (see " + (dir / "collection.json").string() + ")");
   const index_t a = index_of[pos[1]], b = index_of[pos[2]];
-  const fuzzy_correspondence f = read_fuzzy_correspondence(dir / "fuzzy.bin");
-  if (f.shapes() != static_cast<index_t>(records.size()))
-    throw io_error(file_error::bad_value, (dir / "fuzzy.bin").string(), 0, 0,
-                   "holds " + std::to_string(f.shapes()) + " shapes, collection.json " + std::to_string(records.size()));
   std::vector<index_t> map;
   if (consistent) {
-    if (manifest.find("mode")->as_string() != "intrinsic")
+    if (collection.mode != "intrinsic")
       throw cli::usage_error("--consistent-blended needs an intrinsic collection (this one is extrinsic)");
     intrinsic_aligner aligner(records, [&files](index_t k) { return read_mesh(files[std::size_t(k)]).mesh; });
     const auto cb = make_consistent_blended_map(aligner, f, a, b);
