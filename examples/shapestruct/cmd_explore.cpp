@@ -342,6 +342,13 @@ int run_explore(const std::vector<std::string>& args) {
                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 
   httplib::Server server;
+  // Loopback only, so compression buys nothing, and Debian's httplib brotli-compresses at its slowest setting
+  // (seconds for three.js on every page load). Dropping Accept-Encoding before routing serves everything plain;
+  // httplib hands the handler the request object it owns and reads the header again after routing.
+  server.set_pre_routing_handler([](const httplib::Request& req, httplib::Response&) {
+    const_cast<httplib::Request&>(req).headers.erase("Accept-Encoding");
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
   if (page_dir.empty())
     std::fprintf(stderr, "explore: the page was not built (npm missing at build time?): only the JSON API is served\n");
   else
