@@ -276,6 +276,10 @@ async function main() {
     page.on('console', (m) => {
       if (m.type() === 'error') pageErrors.push(m.text());
     });
+    let lastQuery = null;  // the regions the page sent, logged so a ranking can be reproduced through the API
+    page.on('request', (r) => {
+      if (r.url().endsWith('/api/query')) lastQuery = r.postData();
+    });
     const navigationStarted = Date.now();
     await page.goto(baseUrl);
     await page.waitForFunction(() => window.explorer && window.explorer.ready, null, { timeout: 180_000 })
@@ -367,6 +371,7 @@ async function main() {
     const precision = hits / n;
     const table = others.map((s, k) => `${String(k + 1).padStart(3)}. ${collection.shapes[s].name}` +
       ` ${truth.hasArms[s] ? 'ARMS' : '    '}${k === n - 1 ? '   <- top n' : ''}`).join('\n');
+    log(`the query the page sent: ${lastQuery}`);
     log(`ranking after the example (top ${n} = number of other chairs with arms):\n${table}`);
     log(`precision of the top ${n}: ${hits}/${n} = ${precision.toFixed(3)} (needed ${PRECISION_NEEDED})`);
     const tiles = await gridRect();

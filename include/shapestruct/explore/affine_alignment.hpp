@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 // affine_alignment: the weighted least-squares affine map between corresponding point sets (ch. 4.5.3).
 #pragma once
+#include <algorithm>
 #include <Eigen/Core>
 #include <Eigen/Dense>
+#include <Eigen/SVD>
 #include "shapestruct/core/types.hpp"
 
 namespace shapestruct {
@@ -43,7 +45,11 @@ class affine_least_squares {
   /// points, e.g. a region on a planar patch), the undetermined directions stay as the identity would map them: a
   /// ridge of relative size `ridge` pulls the linear part towards the best uniform scale (it changes a
   /// well-determined solution by about that relative amount). No pairs: the identity.
-  [[nodiscard]] affine_transform solve(double ridge = 1e-9) const {
+  /// `max_stretch` > 0 bounds the linear part: its singular values are clamped to [m / max_stretch, m max_stretch]
+  /// about their median m, and a reflection is undone, keeping the weighted centroids matched. Pairs that cannot
+  /// be an affine image of each other (a region whose counterparts scatter over a shape that lacks it) otherwise
+  /// flatten the target onto a plane; 0 keeps the plain least-squares map.
+  [[nodiscard]] affine_transform solve(double ridge = 1e-9, double max_stretch = 0) const {
     if (!(total_ > 0)) return identity_affine();
     const Eigen::Vector3d mx = xx_.block<3, 1>(0, 3) / total_;  // weighted centroids
     const Eigen::Vector3d my = yx_.col(3) / total_;
@@ -58,10 +64,24 @@ class affine_least_squares {
       const Eigen::Matrix3d lhs = Sxx + lambda * Eigen::Matrix3d::Identity();
       A = (lhs.ldlt().solve((Syx + lambda * s * Eigen::Matrix3d::Identity()).transpose())).transpose();
     }
+    if (max_stretch > 0) A = limit_stretch(A, max_stretch);
     affine_transform T;
     T.leftCols<3>() = A;
     T.col(3) = my - A * mx;
     return T;
+  }
+
+  /// A with its singular values clamped to [m / ratio, m ratio] about their median m and its orientation kept
+  /// (a negative determinant flips the smallest singular direction).
+  [[nodiscard]] static Eigen::Matrix3d limit_stretch(const Eigen::Matrix3d& A, double ratio) {
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Vector3d sigma = svd.singularValues();  // descending
+    const double median = sigma[1];
+    if (!(median > 0)) return A;
+    for (int k = 0; k < 3; ++k) sigma[k] = std::clamp(sigma[k], median / ratio, median * ratio);
+    Eigen::Matrix3d U = svd.matrixU();
+    if ((U * svd.matrixV().transpose()).determinant() < 0) U.col(2) = -U.col(2);
+    return U * sigma.asDiagonal() * svd.matrixV().transpose();
   }
 
  private:

@@ -28,6 +28,10 @@ struct region_query_options {
   /// cannot see geometry a target lacks: a chair without arms has no points to misplace, so its arm-region
   /// distance is as small as an armed chair's.
   bool symmetric = true;
+  /// Bound on T_R's anisotropy (affine_least_squares::solve): its singular values stay within this factor of
+  /// their median, and it never reflects. A shape lacking the region has counterparts that are no affine image of
+  /// it, and the chapter's unbounded fit then flattens that shape; 0 = the unbounded fit.
+  double max_stretch = 1.5;
   int threads = 0;  ///< 0 = all cores, for distances(); the result does not depend on it
 };
 
@@ -80,6 +84,7 @@ class region_query {
     damping_ = options.damping > 0 ? options.damping : 1.0 / (4.0 * double(K));
     threads_ = options.threads;
     symmetric_ = options.symmetric;
+    max_stretch_ = options.max_stretch;
     surface_ = knn_index<double, 3>(example.surface_points.rows() > 0 ? example.surface_points : example.samples);
   }
 
@@ -131,7 +136,7 @@ class region_query {
     if (j == i) {  // the example against itself: already in its own frame
       m.transform = identity_affine();
     } else {
-      m.transform = fit.solve();
+      m.transform = fit.solve(1e-9, max_stretch_);
     }
     const double total = m.correspondence.sum();
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -186,6 +191,7 @@ class region_query {
   double damping_ = 0;
   int threads_ = 0;
   bool symmetric_ = true;
+  double max_stretch_ = 1.5;
   knn_index<double, 3> surface_;
 };
 
