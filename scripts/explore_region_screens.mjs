@@ -3,12 +3,12 @@
 // explore_region_screens.mjs: paints a region on one shape of a running `shapestruct explore` server through
 // real mouse strokes, sorts, and saves screenshots of the sorted collection and of "align to region". Made for
 // the documentation's real-data figures (docs/explore.md); prints the ranking and the query's timings.
+// Strokes are small circles about each given point that is visible in the example view.
 //
 //   node scripts/explore_region_screens.mjs --url http://127.0.0.1:PORT/ --node-modules BUILD/web/explore-npm/node_modules \
 //        --example 0 --points "x,y,z;x,y,z" --screens DIR [--prefix NAME] [--brush 8]
 //
-// --points are model-space positions on the example (for instance benchmark feature points); the strokes go
-// through the visible ones and a small circle around each.
+// --points are model-space positions on the example (for instance benchmark feature points).
 
 import path from 'node:path';
 import fs from 'node:fs';
@@ -66,7 +66,7 @@ try {
   await settle();
   await page.locator('[data-testid=brush-radius]').fill(args.brush);
 
-  // Strokes: a small circle about each visible point, and a line through them in the order given.
+  // Strokes: a small circle about each visible point (a line between them could cross other parts).
   const projected = await page.evaluate((pts) => pts.map((p) => window.explorer.projectToScreen(0, p)), points);
   const visible = projected.filter((p) => p.visible);
   if (!visible.length) fail('none of the --points is visible in the example view');
@@ -76,12 +76,6 @@ try {
     for (let a = 1; a <= 12; ++a) {
       await page.mouse.move(c.x + 6 * Math.cos((a * Math.PI) / 6), c.y + 6 * Math.sin((a * Math.PI) / 6));
     }
-    await page.mouse.up();
-  }
-  if (visible.length > 1) {
-    await page.mouse.move(visible[0].x, visible[0].y);
-    await page.mouse.down();
-    for (const p of visible.slice(1)) await page.mouse.move(p.x, p.y, { steps: 4 });
     await page.mouse.up();
   }
   await settle();
@@ -101,6 +95,7 @@ try {
     `sort to redrawn ${Math.round(timings.lastSortMs)} ms`);
   await shot('sorted');
   await page.click('[data-testid=align-region]');
+  await page.waitForFunction(() => document.querySelector('[data-testid=align-region]').getAttribute('aria-pressed') === 'true');
   await shot('aligned');
   if (errors.length) fail(`errors in the page: ${errors.join('; ')}`);
 } finally {
