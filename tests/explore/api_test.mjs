@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // `shapestruct explore` end to end through its JSON API (no browser): every 4xx case answers with a message and
 // leaves the server running, the server listens on 127.0.0.1 only, a folder that is not fuzzy output is refused
-// at start with the missing file named, and nothing is written into the output folder.
+// at start with the missing file named, --templates adds part labels and clusters, and nothing is written into
+// the output folder.
 //   node tests/explore/api_test.mjs --cli <shapestruct> --work <scratch folder>
 import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -56,10 +57,11 @@ function listing(dir) {
 }
 const before = listing(out);
 
-const server = spawn(cli, ['explore', out, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
 let stderr = '';
-server.stderr.on('data', (d) => { stderr += d; });
-try {
+/** Starts `shapestruct explore ARGS --port 0` and waits for its serving line: {server, url}. */
+async function serve(extra) {
+  const server = spawn(cli, ['explore', ...extra, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
+  server.stderr.on('data', (d) => { stderr += d; });
   const url = await new Promise((resolve, reject) => {
     let stdout = '';
     const timer = setTimeout(() => reject(new Error(`no 'serving' line after 60 s; stderr:\n${stderr}`)), 60000);
@@ -70,6 +72,19 @@ try {
     });
     server.on('exit', (code) => reject(new Error(`explore exited ${code}:\n${stderr}`)));
   });
+  return { server, url };
+}
+async function stop(server) {
+  server.kill('SIGTERM');
+  await new Promise((resolve) => { if (server.exitCode !== null) resolve(); else server.on('exit', resolve); });
+}
+async function getJson(url) {
+  const r = await fetch(url);
+  return { status: r.status, json: await r.json() };
+}
+
+const { server, url } = await serve([out]);
+try {
   const port = Number(new URL(url).port);
 
   async function request(method, p, body) {
@@ -134,8 +149,28 @@ try {
   }
   if (others.length === 0) console.log('(no non-loopback IPv4 address on this machine: the bind check is the serving line)');
 } finally {
-  server.kill('SIGTERM');
-  await new Promise((resolve) => { if (server.exitCode !== null) resolve(); else server.on('exit', resolve); });
+  await stop(server);
+}
+
+// With `shapestruct templates` output: part label names, a template cluster per shape, a part label per face.
+{
+  const templates = path.join(work, 'templates');
+  run('templates', path.join(work, 'chairs'), '-o', templates, '--quiet', '--no-ply', '--no-points');
+  const withParts = await serve([out, '--templates', templates]);
+  try {
+    const c = await getJson(withParts.url + '/api/collection');
+    check(c.status === 200 && c.json.label_names.length > 0 && c.json.shapes.every((s) => Number.isInteger(s.cluster)),
+          `--templates: label names (${c.json.label_names}) and a cluster for every shape`);
+    const m = await getJson(withParts.url + '/api/shape/2/mesh');
+    check(m.status === 200 && Array.isArray(m.json.face_labels) && m.json.face_labels.length === m.json.faces.length / 3 &&
+          m.json.face_labels.every((l) => l >= 0 && l < c.json.label_names.length),
+          '--templates: one part label per face, each naming a part');
+  } finally {
+    await stop(withParts.server);
+  }
+  const r = spawnSync(cli, ['explore', out, '--templates', path.join(work, 'no-such-templates'), '--port', '0'],
+                      { encoding: 'utf8', timeout: 20000 });
+  check(r.status === 2 && /no-such-templates.*templates\.json is missing/.test(r.stderr), `a missing --templates folder is refused (usage error) naming the missing file (exit ${r.status}: ${r.stderr.trim()})`);
 }
 check(listing(out) === before, 'nothing in the output folder was written or changed');
 if (failures > 0) {
