@@ -653,6 +653,9 @@ int run_analyze(const std::vector<std::string>& args) {
   s.threads = reader.integer({"--threads"}, 0);
   s.mode = reader.option({"--mode"}, "auto");
   const std::string truth = reader.option({"--truth"});
+  cli::templates_cli_options topt;
+  topt.template_file = reader.option({"--template", "-t"});
+  topt.learn_subset = reader.integer({"--learn-subset"}, 200);
   s.quiet = reader.flag("--quiet");
   const auto pos = reader.positionals();
   if (pos.size() != 1) throw cli::usage_error("expected one input folder DIR");
@@ -664,7 +667,6 @@ int run_analyze(const std::vector<std::string>& args) {
   s.truth_given = !truth.empty();
   s.truth = s.truth_given ? fs::path(truth) : s.input;
   if (s.truth_given && !fs::is_directory(s.truth)) throw cli::usage_error("--truth " + truth + " is not a folder");
-  cli::templates_cli_options topt;
   topt.threads = s.threads;
   cli::fuzzy_cli_options fopt;
   fopt.mode = s.mode;
@@ -821,7 +823,8 @@ int run_analyze(const std::vector<std::string>& args) {
 const cli::register_command reg{
     "analyze",
     {"the structure of a folder of shapes in one command: check, templates, accuracy, fuzzy correspondences, report",
-     "usage: shapestruct analyze DIR -o OUT [--threads N] [--mode auto|intrinsic|extrinsic] [--truth DIR] [--quiet]\n"
+     "usage: shapestruct analyze DIR -o OUT [--threads N] [--mode auto|intrinsic|extrinsic] [--truth DIR]\n"
+     "                           [--template T.json] [--learn-subset S] [--quiet]\n"
      "\n"
      "Runs five stages on every shape file in DIR (.off .obj .ply .stl), each into its own folder of OUT:\n"
      "  inspect/    check_mesh's report per shape (STEM.json) and summary.json; an unreadable, empty or\n"
@@ -841,6 +844,8 @@ const cli::register_command reg{
      "  --mode M      fuzzy correspondences: auto (default: intrinsic when every shape is a closed genus-0\n"
      "                manifold, else extrinsic), intrinsic or extrinsic\n"
      "  --truth DIR   ground-truth labels STEM.seg (one 0-based label per face) in DIR\n"
+     "  --template T.json, --learn-subset S   passed to the templates stage (`shapestruct templates --help`):\n"
+     "                initial templates instead of the automatic ones; shapes to learn from (default 200)\n"
      "  --quiet       no progress display",
      run_analyze}};
 

@@ -132,18 +132,32 @@ if(NOT before STREQUAL again)
 endif()
 
 # As an interruption leaves it: templates, evaluate, fuzzy and report unfinished, some of their files missing.
+file(GLOB pairs_before RELATIVE ${OUT}/fuzzy/pairs ${OUT}/fuzzy/pairs/*.align)
 file(REMOVE ${OUT}/templates/.done ${OUT}/templates/chair_000005.fit.json ${OUT}/templates/chair_000005.seg
      ${OUT}/templates/summary.json ${OUT}/evaluate/.done ${OUT}/evaluate/accuracy.json
      ${OUT}/fuzzy/.done ${OUT}/fuzzy/fuzzy.bin ${OUT}/fuzzy/collection.json ${OUT}/fuzzy/graph.txt
      ${OUT}/report/.done ${OUT}/report/index.html ${OUT}/report/parts/chair_000007.png ${OUT}/manifest.json)
-file(GLOB pairs ${OUT}/fuzzy/pairs/*.align)
-list(GET pairs 0 one_pair)
-file(REMOVE ${one_pair})
+list(GET pairs_before 0 one_pair)
+file(REMOVE ${OUT}/fuzzy/pairs/${one_pair})
 run_cli(0 third analyze ${IN} -o ${OUT} --threads 2 --quiet)
 # The resume cache fuzzy/pairs/*.align records each alignment's wall time (the library's cache format), so a
-# recomputed pair differs there; every other file must be identical.
+# recomputed pair differs there; the same pairs must be there, and every other file must be identical.
+file(GLOB pairs_after RELATIVE ${OUT}/fuzzy/pairs ${OUT}/fuzzy/pairs/*.align)
 hash_tree(${OUT} resumed "^fuzzy/pairs/")
-if(NOT before_results STREQUAL resumed)
+if(NOT before_results STREQUAL resumed OR NOT pairs_before STREQUAL pairs_after)
   message(FATAL_ERROR "a resumed run gave other files than the uninterrupted one:\n--- uninterrupted\n${before_results}\n--- resumed\n${resumed}")
 endif()
-message(STATUS "resumed run: the same files, byte for byte")
+message(STATUS "resumed run (files deleted): the same files, byte for byte")
+
+# A real interruption: the run is killed after a few seconds (CTest's timeout kills the process), then run
+# again to the end, into the same path (the report names OUT), with the first run's results moved aside.
+file(RENAME ${OUT} ${WORK}/out_uninterrupted)
+execute_process(COMMAND ${CLI} analyze ${IN} -o ${OUT} --threads 2 --quiet TIMEOUT 6 RESULT_VARIABLE killed
+                OUTPUT_QUIET ERROR_QUIET)
+message(STATUS "killed run: ${killed}")
+run_cli(0 fourth analyze ${IN} -o ${OUT} --threads 2 --quiet)
+hash_tree(${OUT} after_kill "^fuzzy/pairs/")
+if(NOT before_results STREQUAL after_kill)
+  message(FATAL_ERROR "a run killed after 6 s and run again gave other files than the uninterrupted one:\n--- uninterrupted\n${before_results}\n--- after the kill\n${after_kill}")
+endif()
+message(STATUS "killed and resumed run: the same files, byte for byte")
