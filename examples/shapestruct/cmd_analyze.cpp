@@ -13,6 +13,7 @@
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -21,6 +22,7 @@
 #include "command.hpp"
 #include "fuzzy_run.hpp"
 #include "progress_display.hpp"
+#include "report_fuzzy.hpp"
 #include "templates_run.hpp"
 #include "thumbnail.hpp"
 #include "shapestruct/core/check_mesh.hpp"
@@ -397,6 +399,34 @@ std::pair<std::string, std::string> mode_and_reason(const analyze_settings& s, c
   return {mode, why};
 }
 
+/// Blue (0) - grey (0.5) - red (1): the variance colour map.
+cli::rgb variance_color(float v) {
+  const float t = std::clamp(std::isfinite(v) ? v : 0.0f, 0.0f, 1.0f);
+  const float lo[3] = {59, 76, 192}, mid[3] = {221, 221, 221}, hi[3] = {180, 4, 38};
+  cli::rgb c;
+  for (int k = 0; k < 3; ++k) {
+    const float x = t < 0.5f ? lo[k] + (mid[k] - lo[k]) * (2 * t) : mid[k] + (hi[k] - mid[k]) * (2 * t - 1);
+    c[std::size_t(k)] = static_cast<std::uint8_t>(std::lround(x));
+  }
+  return c;
+}
+
+/// For every face, the sample nearest its centroid (brute force: K is small).
+std::vector<long> nearest_sample_of_faces(const triangle_mesh<double>& m, const Eigen::Matrix<double, Eigen::Dynamic, 3>& S) {
+  std::vector<long> out(std::size_t(m.F.rows()), 0);
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
+    const Eigen::RowVector3d c = (m.V.row(m.F(f, 0)) + m.V.row(m.F(f, 1)) + m.V.row(m.F(f, 2))) / 3.0;
+    Eigen::Index best = 0;
+    (S.rowwise() - c).rowwise().squaredNorm().minCoeff(&best);
+    out[std::size_t(f)] = long(best);
+  }
+  return out;
+}
+
+/// Shapes whose colour-transfer thumbnails the report shows: the reference (shape 0 of the fuzzy collection) and
+/// the next ones, up to this many in all.
+constexpr std::size_t transfer_examples = 12;
+
 void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& files,
                       const std::vector<shape_check>& checks, cli::progress_line& bar) {
   const fs::path dir = s.out / "report";
@@ -405,6 +435,31 @@ void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& fi
                                                    ? read_template_infos(s.out / "templates" / "templates.json")
                                                    : std::vector<template_info>{};
   const int up = templates.empty() ? 1 : templates.front().up;
+  // Variance and colour transfer from the fuzzy stage, when it succeeded.
+  std::optional<cli::fuzzy_colours> fz;
+  std::map<std::string, std::size_t> fuzzy_index;
+  std::vector<cli::rgb> reference_colors;
+  if (fs::exists(s.out / "fuzzy" / "fuzzy.bin")) {
+    try {
+      fz = cli::read_fuzzy_colours(s.out / "fuzzy", static_cast<int>(s.threads));
+      for (std::size_t k = 0; k < fz->names.size(); ++k) fuzzy_index[fz->names[k]] = k;
+      // The reference's samples coloured by where they lie in its bounding box (x -> red, y -> green, z -> blue).
+      const auto& S = fz->samples.front();
+      const Eigen::RowVector3d lo = S.colwise().minCoeff(), ext = (S.colwise().maxCoeff() - lo).cwiseMax(1e-12);
+      for (Eigen::Index i = 0; i < S.rows(); ++i) {
+        const Eigen::RowVector3d t = (S.row(i) - lo).cwiseQuotient(ext);
+        reference_colors.push_back({static_cast<std::uint8_t>(std::lround(30 + 210 * t[0])),
+                                    static_cast<std::uint8_t>(std::lround(30 + 210 * t[1])),
+                                    static_cast<std::uint8_t>(std::lround(30 + 210 * t[2]))});
+      }
+      fs::create_directories(dir / "variance");
+      fs::create_directories(dir / "transfer");
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "analyze: report: no variance or correspondences: %s\n", e.what());
+      fz.reset();
+    }
+  }
+  std::vector<char> has_variance(files.size(), 0), has_transfer(files.size(), 0);
   // Thumbnails, in parallel.
   std::vector<char> has_parts(files.size(), 0), has_shape(files.size(), 0);
   std::mutex m;
@@ -427,6 +482,20 @@ void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& fi
           for (const auto l : labels) colors.push_back(cli::part_color(long(l)));
           cli::write_png(dir / "parts" / (c.name + ".png"), cli::render_thumbnail(P, F, colors));
           has_parts[i] = 1;
+        }
+        if (fz && fuzzy_index.count(c.name)) {
+          const std::size_t k = fuzzy_index.at(c.name);
+          const auto near = nearest_sample_of_faces(mesh, fz->samples[k]);
+          std::vector<cli::rgb> vc(near.size());
+          for (std::size_t f = 0; f < near.size(); ++f) vc[f] = variance_color(fz->variance[k][std::size_t(near[f])]);
+          cli::write_png(dir / "variance" / (c.name + ".png"), cli::render_thumbnail(P, F, vc));
+          has_variance[i] = 1;
+          if (k < transfer_examples) {
+            for (std::size_t f = 0; f < near.size(); ++f)
+              vc[f] = reference_colors[std::size_t(fz->to_reference[k][std::size_t(near[f])])];
+            cli::write_png(dir / "transfer" / (c.name + ".png"), cli::render_thumbnail(P, F, vc));
+            has_transfer[i] = 1;
+          }
         }
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> g(m);
@@ -539,6 +608,25 @@ void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& fi
   }
   h << "</div>\n";
 
+  if (fz) {
+    h << "<h2>Where the collection varies</h2>\n<p>Every shape coloured by the variance of its fuzzy-correspondence "
+         "samples (chapter 4.5.1, <code>sample_variance</code>): blue where its points have close counterparts on the "
+         "other shapes, red where it differs most from them (1 = the shape's largest value).</p>\n<div class=\"grid\">";
+    for (std::size_t i = 0; i < files.size(); ++i)
+      if (has_variance[i])
+        h << "<img src=\"variance/" << html_escape(checks[i].name) << ".png\" width=\"110\" height=\"110\" title=\""
+          << html_escape(checks[i].name) << "\" alt=\"" << html_escape(checks[i].name) << " by variance\">";
+    h << "</div>\n<h2>Correspondences by colour transfer</h2>\n<p>The reference shape <b>"
+      << html_escape(fz->names.front()) << "</b> is coloured by position (x red, y green, z blue); every other shape "
+      << "takes, at each point, the colour of its best fuzzy correspondence on the reference. The first "
+      << transfer_examples << " shapes of the fuzzy collection.</p>\n<div class=\"grid\">";
+    for (std::size_t i = 0; i < files.size(); ++i)
+      if (has_transfer[i])
+        h << "<div class=\"card tpl\"><img src=\"transfer/" << html_escape(checks[i].name) << ".png\" alt=\""
+          << html_escape(checks[i].name) << " colour transfer\"><br>" << html_escape(checks[i].name)
+          << (fuzzy_index.count(checks[i].name) && fuzzy_index.at(checks[i].name) == 0 ? " (reference)" : "") << "</div>";
+    h << "</div>\n";
+  }
   h << "<h2>Skipped shapes</h2>\n";
   if (skipped.empty()) {
     h << "<p id=\"skipped\">None: every shape went through every stage.</p>\n";
@@ -553,8 +641,8 @@ void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& fi
       << " shapes, " << static_cast<long long>(col.find("pairs_aligned")->as_number()) << " of "
       << static_cast<long long>(col.find("pairs_total")->as_number()) << " pairs aligned, "
       << static_cast<long long>(col.find("iterations")->as_number()) << " graph optimisation round(s)"
-      << (col.find("converged")->as_bool() ? " (converged)" : "") << ". Colouring by variance and correspondences by "
-      << "colour transfer are not in this report yet: use <code>shapestruct explore</code>.</p>\n";
+      << (col.find("converged")->as_bool() ? " (converged)" : "") << ". Regions of interest, other reference shapes "
+      << "and maps between any two shapes: <code>shapestruct explore</code>.</p>\n";
   }
   h << "<script src=\"../timings.js\"></script>\n<script>\n"
     << "(function(){var t=window.SHAPESTRUCT_TIMINGS;if(!t)return;var tb=document.getElementById('timings');\n"
@@ -591,6 +679,8 @@ std::string describe(const std::string& rel) {
   if (starts("report/shapes/")) return "thumbnail of one shape (co-aligned frame)";
   if (starts("report/parts/")) return "thumbnail of one shape coloured by its part labels";
   if (starts("report/templates/")) return "thumbnail of one template's boxes coloured by label";
+  if (starts("report/variance/")) return "thumbnail of one shape coloured by the variance of its fuzzy samples";
+  if (starts("report/transfer/")) return "thumbnail of one shape coloured by colour transfer from the reference shape";
   if (ends("/.done")) return "stage completion marker (written last, atomically): a rerun skips the stage";
   return "written by the stage";
 }
