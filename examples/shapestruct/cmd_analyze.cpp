@@ -98,7 +98,7 @@ struct shape_check {
 };
 
 // ---------------------------------------------------------------------------------------------------------------
-// Stage 1: inspect. Per shape inspect/STEM.json (the object of `shapestruct inspect --json`), and summary.json.
+// Stage 1: inspect. Per shape file inspect/FILE.json (the object of `shapestruct inspect --json`), and summary.json.
 
 void run_inspect_stage(const analyze_settings& s, const std::vector<fs::path>& files, cli::progress_line& bar) {
   const fs::path dir = s.out / "inspect";
@@ -143,11 +143,20 @@ void run_inspect_stage(const analyze_settings& s, const std::vector<fs::path>& f
       detail::json_write_string(fesc, c.file);
       text = "{\"file\":" + fesc + ",\"ok\":true,\"report\":" + report_json + "}\n";
     }
-    write_atomic(dir / (c.name + ".json"), text);
+    write_atomic(dir / (c.file + ".json"), text);  // FILE.json: two files may share a stem
     std::lock_guard<std::mutex> g(m);
     bar.update("shapes", ++done, files.size());
   });
   bar.finish();
+  // The later stages name their outputs by file stem: of several files with one stem, the first is used.
+  std::map<std::string, std::string> first_with_stem;
+  for (auto& c : checks) {
+    const auto [it, fresh] = first_with_stem.emplace(c.name, c.file);
+    if (!fresh && c.usable) {
+      c.usable = false;
+      c.reason = "has the same name as " + it->second + " (the stages name their outputs by file stem)";
+    }
+  }
   json_value::array shapes;
   for (const auto& c : checks) {
     json_value::object o{{"name", c.name}, {"file", c.file}, {"usable", c.usable}};
@@ -357,7 +366,7 @@ struct skipped_shape {
 std::vector<skipped_shape> collect_skipped(const analyze_settings& s, const std::vector<shape_check>& checks) {
   std::vector<skipped_shape> v;
   for (const auto& c : checks)
-    if (!c.usable) v.push_back({c.name, "inspect", c.reason});
+    if (!c.usable) v.push_back({c.file, "inspect", c.reason});
   const json_value sum = read_json_or_null(s.out / "templates" / "summary.json");
   if (sum.is_object())
     if (const auto* f = sum.find("failed"))
@@ -917,7 +926,7 @@ const cli::register_command reg{
      "                           [--template T.json] [--learn-subset S] [--quiet]\n"
      "\n"
      "Runs five stages on every shape file in DIR (.off .obj .ply .stl), each into its own folder of OUT:\n"
-     "  inspect/    check_mesh's report per shape (STEM.json) and summary.json; an unreadable, empty or\n"
+     "  inspect/    check_mesh's report per shape file (FILE.json) and summary.json; an unreadable, empty or\n"
      "              non-finite shape is reported and skipped by the later stages\n"
      "  templates/  exactly what `shapestruct templates` writes (learned templates, STEM.seg, co-alignment)\n"
      "  evaluate/   with ground truth (the generator's STEM.seg beside the shapes, or --truth DIR):\n"
