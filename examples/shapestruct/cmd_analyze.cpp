@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -17,7 +18,10 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
+
+#include <unistd.h>
 
 #include "command.hpp"
 #include "fuzzy_run.hpp"
@@ -78,6 +82,46 @@ std::string percent(double x) {
 }
 
 const char* stage_names[] = {"inspect", "templates", "evaluate", "fuzzy", "report"};
+
+/// While a phase without progress reports runs (the templates' learning), redraws "STAGE: PHASE, N s" once a
+/// second on a terminal, so the display never stands still; stopped by the next phase, progress or stage end.
+class phase_ticker {
+ public:
+  explicit phase_ticker(bool quiet) : enabled_(!quiet && isatty(2) != 0) {}
+  ~phase_ticker() { stop(); }
+  void start(const std::string& label) {
+    stop();
+    if (!enabled_) return;
+    running_ = true;
+    thread_ = std::thread([this, label] {
+      const auto t0 = steady::now();
+      std::unique_lock<std::mutex> lk(m_);
+      while (!cv_.wait_for(lk, std::chrono::seconds(1), [this] { return !running_; })) {
+        std::fprintf(stderr, "\r%s, %.0f s spent  ", label.c_str(), since(t0));
+        std::fflush(stderr);
+        printed_ = true;
+      }
+    });
+  }
+  void stop() {
+    if (!thread_.joinable()) return;
+    {
+      std::lock_guard<std::mutex> g(m_);
+      running_ = false;
+    }
+    cv_.notify_all();
+    thread_.join();
+    if (printed_) std::fprintf(stderr, "\n");
+    printed_ = false;
+  }
+
+ private:
+  bool enabled_;
+  bool running_ = false, printed_ = false;
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::thread thread_;
+};
 
 /// One analyze run's settings.
 struct analyze_settings {
@@ -826,14 +870,18 @@ int run_analyze(const std::vector<std::string>& args) {
   // 2. templates
   stage("templates", [&] {
     cli::progress_line bar(s.quiet, "templates/");
+    phase_ticker ticker(s.quiet);
     cli::templates_hooks hooks;
     hooks.phase = [&](const std::string& m) {
+      ticker.stop();
       bar.finish();
       say("templates: " + m);
+      if (m.rfind("labeling", 0) != 0) ticker.start("templates: " + m);  // labeling reports its own progress
     };
     hooks.problem = [&](const std::string& f, const std::string& m) { std::fprintf(stderr, "\ranalyze: templates: skipped %s: %s\n", f.c_str(), m.c_str()); };
     hooks.progress = [&](std::size_t d, std::size_t t) { bar.update("labeling", d, t); };
     const auto sum = cli::run_templates_folder(usable, s.out / "templates", topt, hooks);
+    ticker.stop();
     bar.finish();
     return std::to_string(sum.template_ids.size()) + " template(s), " + std::to_string(sum.processed + sum.skipped) +
            " shapes labelled, " + std::to_string(sum.failed) + " failed";
