@@ -702,6 +702,10 @@ void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& fi
     << "var total=0;for(var i=0;i<t.stages.length;i++){var s=t.stages[i];var r=tb.insertRow();r.insertCell().textContent=s.stage;\n"
     << "r.insertCell().textContent=(s.seconds===null?'not run':s.seconds.toFixed(1));if(s.seconds)total+=s.seconds;}\n"
     << "var r=tb.insertRow();r.insertCell().innerHTML='<b>total</b>';r.insertCell().innerHTML='<b>'+total.toFixed(1)+'</b>';})();\n"
+    // A self-check a headless browser can read back (tests/cli/analyze_smoke.cmake): images loaded and broken.
+    << "window.addEventListener('load',function(){var im=document.images,bad=0;for(var i=0;i<im.length;i++)\n"
+    << "if(!im[i].complete||im[i].naturalWidth===0)bad++;document.body.setAttribute('data-images',im.length);\n"
+    << "document.body.setAttribute('data-broken-images',bad);});\n"
     << "</script>\n</body>\n</html>\n";
   write_atomic(dir / "index.html", h.str());
 }

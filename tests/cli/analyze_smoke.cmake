@@ -2,7 +2,8 @@
 # the manifest, the report (links, thumbnails not blank), the accuracy, and resuming: a second run redoes
 # nothing and changes no file; a run after deleting part of the work (as an interruption would leave it) gives
 # the same files byte for byte. Run by CTest as
-#   cmake -DCLI=<shapestruct> -DWORK=<scratch folder> -DPYTHON=<python3> -DPNG_CHECK=<png_check.py> -P analyze_smoke.cmake
+#   cmake -DCLI=<shapestruct> -DWORK=<scratch folder> -DPYTHON=<python3> -DPNG_CHECK=<png_check.py>
+#         [-DCHROMIUM=<chromium>] -P analyze_smoke.cmake
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 
@@ -101,6 +102,24 @@ if(NOT code EQUAL 0)
   message(FATAL_ERROR "PNG check failed:\n${pout}${perr}")
 endif()
 message(STATUS "report: ${nrefs} links, ${pout}")
+# In Debian's chromium, headless, from file:// (when installed): the page's scripts ran (the stage times came from
+# ../timings.js) and every image loaded (the page's own check, written into <body> after the load event).
+if(CHROMIUM)
+  execute_process(COMMAND ${CHROMIUM} --headless --no-sandbox --disable-gpu --virtual-time-budget=10000 --dump-dom
+                          file://${OUT}/report/index.html
+                  RESULT_VARIABLE code OUTPUT_VARIABLE dom ERROR_QUIET TIMEOUT 120)
+  string(REGEX MATCH "data-images=\"([0-9]+)\"" m1 "${dom}")
+  set(images ${CMAKE_MATCH_1})
+  string(REGEX MATCH "data-broken-images=\"([0-9]+)\"" m2 "${dom}")
+  set(broken ${CMAKE_MATCH_1})
+  if(NOT code EQUAL 0 OR NOT images GREATER 0 OR NOT broken STREQUAL "0" OR NOT dom MATCHES "<td>templates</td>")
+    message(FATAL_ERROR "chromium: exit ${code}, ${images} images, ${broken} not loaded, stage times filled in: "
+                        "see the DOM:\n${dom}")
+  endif()
+  message(STATUS "chromium (headless, file://): ${images} images, all loaded; stage times shown")
+else()
+  message(STATUS "chromium not found: the page was not opened in a browser")
+endif()
 
 # Every result file (all but the timing files) with its hash; a file matching `skip` (a regex) is left out.
 function(hash_tree dir out_var skip)
