@@ -616,7 +616,8 @@ void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& fi
     << "</code>.</p>\n";
 
   h << "<h2>Time of each stage</h2>\n<table id=\"timings\"><tr><th>stage</th><th>seconds</th></tr></table>\n"
-    << "<p id=\"timings-note\">The times are in <code>../timings.json</code> (loaded from <code>../timings.js</code>).</p>\n";
+    << "<p id=\"timings-note\">Seconds of the run that finished each stage (a stage resumed after an interruption "
+       "counts its last run only), from <code>../timings.json</code> (loaded from <code>../timings.js</code>).</p>\n";
 
   h << "<h2>Part labels</h2>\n<p>";
   for (const long l : labels_used) {
