@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "command.hpp"
+#include "fuzzy_run.hpp"
 #include "shapestruct/fuzzy/collection_records.hpp"
 #include "shapestruct/fuzzy/extrinsic_alignment.hpp"
 #include "shapestruct/fuzzy/fuzzy_collection.hpp"
@@ -51,191 +52,30 @@ const char* fuzzy_map_usage =
     "sample's closest sample in the embedding lies); --consistent-blended (intrinsic collections) the blended map\n"
     "of the pair most consistent with the fuzzy correspondences. One 0-based target vertex id per line.\n";
 
-/// One progress line per stage, rewritten in place: done / total, percent, time left.
-class progress_line {
- public:
-  explicit progress_line(bool quiet) : quiet_(quiet), terminal_(isatty(2) != 0) {}
-  void update(const std::string& stage, std::size_t done, std::size_t total) {
-    // On a terminal the line is redrawn in place; in a log only each stage's last state is written.
-    if (quiet_ || total == 0 || (!terminal_ && done < total)) return;
-    const auto now = steady::now();
-    if (stage != stage_) {
-      if (!stage_.empty()) std::fprintf(stderr, "\n");
-      stage_ = stage;
-      start_ = now;
-    }
-    const double spent = std::chrono::duration<double>(now - start_).count();
-    const double left = done > 0 ? spent * double(total - done) / double(done) : 0.0;
-    const int width = 30;
-    const int filled = static_cast<int>(double(width) * double(done) / double(total));
-    std::fprintf(stderr, "\r%-10s [%s%s] %zu/%zu %5.1f%%  %6.1f s spent, %6.1f s left ", stage.c_str(),
-                 std::string(std::size_t(filled), '#').c_str(), std::string(std::size_t(width - filled), '.').c_str(),
-                 done, total, 100.0 * double(done) / double(total), spent, left);
-    std::fflush(stderr);
-  }
-  void finish() {
-    if (!quiet_ && !stage_.empty()) std::fprintf(stderr, "\n");
-    stage_.clear();
-  }
-
- private:
-  bool quiet_;
-  bool terminal_;
-  std::string stage_;
-  steady::time_point start_;
-};
+using cli::progress_line;
 
 double since(steady::time_point t) { return std::chrono::duration<double>(steady::now() - t).count(); }
 
 int run_fuzzy(const std::vector<std::string>& args) {
   cli::arg_reader reader(args);
   const std::string out = reader.option({"-o", "--output"});
-  const std::string mode = reader.option({"--mode"}, "auto");
-  const long long samples = reader.integer({"--samples"}, 128);
-  const long long threads = reader.integer({"--threads"}, 0);
-  const long long edges_per_shape = reader.integer({"--edges-per-shape"}, 5);
-  const long long up = reader.integer({"--up"}, 1);
-  const double diffusion_time = reader.real({"--diffusion-time"}, 10.0);
-  const long long dimensions = reader.integer({"--dimensions"}, 64);
-  const bool quiet = reader.flag("--quiet");
+  cli::fuzzy_cli_options o;
+  o.mode = reader.option({"--mode"}, "auto");
+  o.samples = reader.integer({"--samples"}, 128);
+  o.threads = reader.integer({"--threads"}, 0);
+  o.edges_per_shape = reader.integer({"--edges-per-shape"}, 5);
+  o.up = reader.integer({"--up"}, 1);
+  o.diffusion_time = reader.real({"--diffusion-time"}, 10.0);
+  o.dimensions = reader.integer({"--dimensions"}, 64);
+  o.quiet = reader.flag("--quiet");
   const auto pos = reader.positionals();
   if (pos.size() != 1) throw cli::usage_error("expected one input folder DIR");
   if (out.empty()) throw cli::usage_error("-o OUT is required");
-  if (mode != "auto" && mode != "extrinsic" && mode != "intrinsic")
-    throw cli::usage_error("--mode must be extrinsic, intrinsic or auto, got '" + mode + "'");
-  if (samples < 3 || threads < 0 || edges_per_shape < 1 || up < 0 || up > 2 || !(diffusion_time >= 0) || dimensions < 1)
-    throw cli::usage_error(
-        "--samples >= 3, --threads >= 0, --edges-per-shape >= 1, --up 0|1|2, --diffusion-time >= 0, --dimensions >= 1");
+  cli::check_fuzzy_options(o);
   const auto files = list_shape_files(pos[0]);
   if (files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + pos[0]);
-  const fs::path out_dir(out);
-  fs::create_directories(out_dir);
-  progress_line bar(quiet);
-  const auto t_start = steady::now();
-
-  // 1. Records (cached in OUT/records): intrinsic collections sample geodesically, extrinsic ones on the surface.
-  collection_records_options ro;
-  ro.threads = static_cast<int>(threads);
-  ro.record.samples = static_cast<index_t>(samples);
-  ro.record.metric = mode == "extrinsic" ? sample_metric::euclidean : sample_metric::automatic;
-  ro.cache_folder = out_dir / "records";
-  ro.on_progress = [&](std::size_t d, std::size_t t) { bar.update("records", d, t); };
-  auto col = make_collection_records(files, ro);
-  bar.finish();
-  const double t_records = since(t_start);
-  for (const auto& s : col.skipped) std::fprintf(stderr, "fuzzy: skipped %s: %s\n", s.file.string().c_str(), s.reason.c_str());
-  bool all_genus0 = !col.records.empty();
-  for (const auto& r : col.records) all_genus0 = all_genus0 && r.closed_genus0;
-  const bool intrinsic = mode == "intrinsic" || (mode == "auto" && all_genus0);
-  if (intrinsic) {
-    // Intrinsic alignment needs closed genus-0 surfaces: the others are left out, by name.
-    const std::size_t before = col.skipped.size();
-    keep_intrinsic_shapes(col, "not a closed genus-0 surface (intrinsic mode needs one; --mode extrinsic keeps it)");
-    for (std::size_t i = before; i < col.skipped.size(); ++i)
-      std::fprintf(stderr, "fuzzy: left out %s: %s\n", col.skipped[i].file.string().c_str(), col.skipped[i].reason.c_str());
-  }
-  if (col.records.size() < 2) {
-    std::fprintf(stderr, "fuzzy: fewer than two usable shapes in %s; nothing to correspond\n", pos[0].c_str());
-    return 1;
-  }
-  if (!quiet)
-    std::fprintf(stderr, "fuzzy: %zu shapes, %s mode, %lld samples each (records %.1f s)\n", col.records.size(),
-                 intrinsic ? "intrinsic" : "extrinsic", samples, t_records);
-
-  // 2. The pipeline, with the pairwise alignments cached in OUT/pairs.
-  fuzzy_collection_options fo;
-  fo.threads = static_cast<int>(threads);
-  fo.graph.edges_per_shape = static_cast<index_t>(edges_per_shape);
-  fo.embedding.time = diffusion_time;
-  fo.embedding.dimensions = static_cast<index_t>(dimensions);
-  fo.cache_folder = out_dir / "pairs";
-  fo.on_progress = [&](const std::string& stage, std::size_t d, std::size_t t) { bar.update(stage, d, t); };
-  const auto t_fuzzy = steady::now();
-  fuzzy_collection_result r;
-  if (intrinsic) {
-    const auto& f = col.files;
-    intrinsic_aligner aligner(col.records, [&f](index_t k) { return read_mesh(f[std::size_t(k)]).mesh; });
-    r = compute_fuzzy_correspondences(col.records, aligner, fo);
-  } else {
-    extrinsic_alignment_options eo;
-    eo.up_axis = static_cast<int>(up);
-    const extrinsic_aligner aligner(col.records, eo);
-    r = compute_fuzzy_correspondences(col.records, aligner, fo);
-  }
-  bar.finish();
-  const double seconds_fuzzy = since(t_fuzzy);
-  json_value::array disconnected;
-  for (const index_t k : r.disconnected) {
-    std::fprintf(stderr, "fuzzy: %s is not connected to the rest of the collection: every alignment to it was "
-                 "rejected, so its correspondences to the others mean nothing\n", col.files[std::size_t(k)].string().c_str());
-    disconnected.push_back(json_value(col.records[std::size_t(k)].name));
-  }
-
-  // 3. Outputs.
-  write_fuzzy_correspondence(out_dir / "fuzzy.bin", r.fuzzy);
-  {
-    std::string s = "# shape sample x y z vertex  (vertex -1: a surface point of a soup)\n";
-    char line[256];
-    for (std::size_t k = 0; k < col.records.size(); ++k) {
-      const auto& rec = col.records[k];
-      for (index_t i = 0; i < rec.sample_count(); ++i) {
-        std::snprintf(line, sizeof line, "%s %ld %.9g %.9g %.9g %ld\n", rec.name.c_str(), long(i), rec.samples(i, 0),
-                      rec.samples(i, 1), rec.samples(i, 2), long(rec.sample_vertex[std::size_t(i)]));
-        s += line;
-      }
-    }
-    io_detail::write_file_atomically(out_dir / "samples.txt", s);
-  }
-  {
-    std::string s = "# source target alternative alternatives consistency global_score (the final alignment graph)\n";
-    char line[512];
-    for (const auto& e : r.edges) {
-      const auto file = out_dir / "pairs" / (col.records[std::size_t(e.source)].name + "__" + col.records[std::size_t(e.target)].name + ".align");
-      const auto pa = read_pair_alignment(file);
-      std::snprintf(line, sizeof line, "%s %s %ld %zu %.6g %.6g\n", col.records[std::size_t(e.source)].name.c_str(),
-                    col.records[std::size_t(e.target)].name.c_str(), long(e.alternative), pa.alternatives.size(),
-                    e.consistency, pa.alternatives[std::size_t(e.alternative)].global_score);
-      s += line;
-    }
-    io_detail::write_file_atomically(out_dir / "graph.txt", s);
-  }
-  {
-    std::string s = "iteration\tedges\tswitched\tpruned\tadded\treconnected\tpairs_aligned\tmean_consistency\talign_s\tembed_s\toptimize_s\tembedding_status\n";
-    for (const auto& it : r.log)
-      s += std::to_string(it.iteration) + "\t" + std::to_string(it.edges) + "\t" + std::to_string(it.alternatives_changed) +
-           "\t" + std::to_string(it.pruned) + "\t" + std::to_string(it.added) + "\t" + std::to_string(it.reconnected) +
-           "\t" + std::to_string(it.pairs_aligned) + "\t" + std::to_string(it.mean_consistency) + "\t" +
-           std::to_string(it.align_seconds) + "\t" + std::to_string(it.embed_seconds) + "\t" +
-           std::to_string(it.optimize_seconds) + "\t" + to_string(it.embedding_info) + "\n";
-    io_detail::write_file_atomically(out_dir / "iterations.tsv", s);
-  }
-  json_value::array shapes, skipped;
-  for (std::size_t k = 0; k < col.records.size(); ++k)
-    shapes.push_back(json_value(json_value::object{{"name", col.records[k].name},
-                                                   {"file", fs::absolute(col.files[k]).string()},
-                                                   {"vertices", static_cast<long long>(col.records[k].vertex_count)},
-                                                   {"closed_genus0", col.records[k].closed_genus0}}));
-  for (const auto& s : col.skipped)
-    skipped.push_back(json_value(json_value::object{{"file", s.file.string()}, {"reason", s.reason}}));
-  const std::size_t N = col.records.size();
-  const json_value manifest(json_value::object{
-      {"mode", intrinsic ? "intrinsic" : "extrinsic"},
-      {"samples", static_cast<long long>(samples)},
-      {"shapes", shapes},
-      {"skipped", skipped},
-      {"disconnected", disconnected},
-      {"pairs_aligned", static_cast<long long>(r.pairs_aligned)},
-      {"pairs_total", static_cast<long long>(N * (N - 1) / 2)},
-      {"iterations", static_cast<long long>(r.log.size() - 1)},
-      {"converged", r.converged},
-      {"seconds", json_value(json_value::object{{"records", t_records}, {"fuzzy", seconds_fuzzy}, {"total", since(t_start)}})}});
-  write_json((out_dir / "collection.json").string(), manifest);
-  if (!quiet)
-    std::fprintf(stderr,
-                 "fuzzy: %zu shapes, %zu of %zu pairs aligned (%.1f %%), %zu iterations%s, %.1f s; wrote %s\n", N,
-                 r.pairs_aligned, N * (N - 1) / 2, 100.0 * double(r.pairs_aligned) / double(N * (N - 1) / 2),
-                 r.log.size() - 1, r.converged ? " (converged)" : "", since(t_start), out_dir.string().c_str());
-  return 0;
+  progress_line bar(o.quiet);
+  return cli::run_fuzzy_folder(files, out, o, bar, pos[0]).exit_code;
 }
 
 int run_fuzzy_map(const std::vector<std::string>& args) {
@@ -278,6 +118,170 @@ int run_fuzzy_map(const std::vector<std::string>& args) {
   write_vertex_map(fs::path(out), std::span<const index_t>(map));
   return 0;
 }
+
+}  // namespace
+
+namespace shapestruct::cli {
+
+void check_fuzzy_options(const fuzzy_cli_options& o) {
+  if (o.mode != "auto" && o.mode != "extrinsic" && o.mode != "intrinsic")
+    throw cli::usage_error("--mode must be extrinsic, intrinsic or auto, got '" + o.mode + "'");
+  if (o.samples < 3 || o.threads < 0 || o.edges_per_shape < 1 || o.up < 0 || o.up > 2 || !(o.diffusion_time >= 0) ||
+      o.dimensions < 1)
+    throw cli::usage_error(
+        "--samples >= 3, --threads >= 0, --edges-per-shape >= 1, --up 0|1|2, --diffusion-time >= 0, --dimensions >= 1");
+}
+
+fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& files, const std::filesystem::path& out,
+                                  const fuzzy_cli_options& o, progress_line& bar, const std::string& input_name) {
+  fuzzy_run_report report;
+  const fs::path out_dir(out);
+  fs::create_directories(out_dir);
+  const auto t_start = steady::now();
+
+  // 1. Records (cached in OUT/records): intrinsic collections sample geodesically, extrinsic ones on the surface.
+  collection_records_options ro;
+  ro.threads = static_cast<int>(o.threads);
+  ro.record.samples = static_cast<index_t>(o.samples);
+  ro.record.metric = o.mode == "extrinsic" ? sample_metric::euclidean : sample_metric::automatic;
+  ro.cache_folder = out_dir / "records";
+  ro.on_progress = [&](std::size_t d, std::size_t t) { bar.update("records", d, t); };
+  auto col = make_collection_records(files, ro);
+  bar.finish();
+  const double t_records = since(t_start);
+  for (const auto& s : col.skipped) std::fprintf(stderr, "fuzzy: skipped %s: %s\n", s.file.string().c_str(), s.reason.c_str());
+  bool all_genus0 = !col.records.empty();
+  for (const auto& r : col.records) all_genus0 = all_genus0 && r.closed_genus0;
+  const bool intrinsic = o.mode == "intrinsic" || (o.mode == "auto" && all_genus0);
+  if (intrinsic) {
+    // Intrinsic alignment needs closed genus-0 surfaces: the others are left out, by name.
+    const std::size_t before = col.skipped.size();
+    keep_intrinsic_shapes(col, "not a closed genus-0 surface (intrinsic mode needs one; --mode extrinsic keeps it)");
+    for (std::size_t i = before; i < col.skipped.size(); ++i)
+      std::fprintf(stderr, "fuzzy: left out %s: %s\n", col.skipped[i].file.string().c_str(), col.skipped[i].reason.c_str());
+  }
+  if (col.records.size() < 2) {
+    std::fprintf(stderr, "fuzzy: fewer than two usable shapes in %s; nothing to correspond\n", input_name.c_str());
+    for (const auto& s : col.skipped) report.skipped.emplace_back(s.file.string(), s.reason);
+    report.exit_code = 1;
+    return report;
+  }
+  if (!o.quiet)
+    std::fprintf(stderr, "fuzzy: %zu shapes, %s mode, %lld samples each (records %.1f s)\n", col.records.size(),
+                 intrinsic ? "intrinsic" : "extrinsic", o.samples, t_records);
+
+  // 2. The pipeline, with the pairwise alignments cached in OUT/pairs.
+  fuzzy_collection_options fo;
+  fo.threads = static_cast<int>(o.threads);
+  fo.graph.edges_per_shape = static_cast<index_t>(o.edges_per_shape);
+  fo.embedding.time = o.diffusion_time;
+  fo.embedding.dimensions = static_cast<index_t>(o.dimensions);
+  fo.cache_folder = out_dir / "pairs";
+  fo.on_progress = [&](const std::string& stage, std::size_t d, std::size_t t) { bar.update(stage, d, t); };
+  const auto t_fuzzy = steady::now();
+  fuzzy_collection_result r;
+  if (intrinsic) {
+    const auto& f = col.files;
+    intrinsic_aligner aligner(col.records, [&f](index_t k) { return read_mesh(f[std::size_t(k)]).mesh; });
+    r = compute_fuzzy_correspondences(col.records, aligner, fo);
+  } else {
+    extrinsic_alignment_options eo;
+    eo.up_axis = static_cast<int>(o.up);
+    const extrinsic_aligner aligner(col.records, eo);
+    r = compute_fuzzy_correspondences(col.records, aligner, fo);
+  }
+  bar.finish();
+  const double seconds_fuzzy = since(t_fuzzy);
+  json_value::array disconnected;
+  for (const index_t k : r.disconnected) {
+    std::fprintf(stderr, "fuzzy: %s is not connected to the rest of the collection: every alignment to it was "
+                 "rejected, so its correspondences to the others mean nothing\n", col.files[std::size_t(k)].string().c_str());
+    disconnected.push_back(json_value(col.records[std::size_t(k)].name));
+  }
+
+  // 3. Outputs.
+  write_fuzzy_correspondence(out_dir / "fuzzy.bin", r.fuzzy);
+  {
+    std::string s = "# shape sample x y z vertex  (vertex -1: a surface point of a soup)\n";
+    char line[256];
+    for (std::size_t k = 0; k < col.records.size(); ++k) {
+      const auto& rec = col.records[k];
+      for (index_t i = 0; i < rec.sample_count(); ++i) {
+        std::snprintf(line, sizeof line, "%s %ld %.9g %.9g %.9g %ld\n", rec.name.c_str(), long(i), rec.samples(i, 0),
+                      rec.samples(i, 1), rec.samples(i, 2), long(rec.sample_vertex[std::size_t(i)]));
+        s += line;
+      }
+    }
+    io_detail::write_file_atomically(out_dir / "samples.txt", s);
+  }
+  {
+    std::string s = "# source target alternative alternatives consistency global_score (the final alignment graph)\n";
+    char line[512];
+    for (const auto& e : r.edges) {
+      const auto file = out_dir / "pairs" / (col.records[std::size_t(e.source)].name + "__" + col.records[std::size_t(e.target)].name + ".align");
+      const auto pa = read_pair_alignment(file);
+      std::snprintf(line, sizeof line, "%s %s %ld %zu %.6g %.6g\n", col.records[std::size_t(e.source)].name.c_str(),
+                    col.records[std::size_t(e.target)].name.c_str(), long(e.alternative), pa.alternatives.size(),
+                    e.consistency, pa.alternatives[std::size_t(e.alternative)].global_score);
+      s += line;
+    }
+    io_detail::write_file_atomically(out_dir / "graph.txt", s);
+  }
+  {
+    // analyze (timings_in_results false) leaves the seconds out, so the file is the same on every run.
+    const bool t = o.timings_in_results;
+    std::string s = std::string("iteration\tedges\tswitched\tpruned\tadded\treconnected\tpairs_aligned\tmean_consistency\t") +
+                    (t ? "align_s\tembed_s\toptimize_s\t" : "") + "embedding_status\n";
+    for (const auto& it : r.log)
+      s += std::to_string(it.iteration) + "\t" + std::to_string(it.edges) + "\t" + std::to_string(it.alternatives_changed) +
+           "\t" + std::to_string(it.pruned) + "\t" + std::to_string(it.added) + "\t" + std::to_string(it.reconnected) +
+           "\t" + std::to_string(it.pairs_aligned) + "\t" + std::to_string(it.mean_consistency) + "\t" +
+           (t ? std::to_string(it.align_seconds) + "\t" + std::to_string(it.embed_seconds) + "\t" +
+                    std::to_string(it.optimize_seconds) + "\t"
+              : std::string()) +
+           to_string(it.embedding_info) + "\n";
+    io_detail::write_file_atomically(out_dir / "iterations.tsv", s);
+  }
+  json_value::array shapes, skipped;
+  for (std::size_t k = 0; k < col.records.size(); ++k)
+    shapes.push_back(json_value(json_value::object{{"name", col.records[k].name},
+                                                   {"file", fs::absolute(col.files[k]).string()},
+                                                   {"vertices", static_cast<long long>(col.records[k].vertex_count)},
+                                                   {"closed_genus0", col.records[k].closed_genus0}}));
+  for (const auto& s : col.skipped)
+    skipped.push_back(json_value(json_value::object{{"file", s.file.string()}, {"reason", s.reason}}));
+  const std::size_t N = col.records.size();
+  json_value manifest(json_value::object{
+      {"mode", intrinsic ? "intrinsic" : "extrinsic"},
+      {"samples", static_cast<long long>(o.samples)},
+      {"shapes", shapes},
+      {"skipped", skipped},
+      {"disconnected", disconnected},
+      {"pairs_aligned", static_cast<long long>(r.pairs_aligned)},
+      {"pairs_total", static_cast<long long>(N * (N - 1) / 2)},
+      {"iterations", static_cast<long long>(r.log.size() - 1)},
+      {"converged", r.converged}});
+  if (o.timings_in_results)
+    manifest.set("seconds", json_value(json_value::object{{"records", t_records}, {"fuzzy", seconds_fuzzy}, {"total", since(t_start)}}));
+  write_json((out_dir / "collection.json").string(), manifest);
+  if (!o.quiet)
+    std::fprintf(stderr,
+                 "fuzzy: %zu shapes, %zu of %zu pairs aligned (%.1f %%), %zu iterations%s, %.1f s; wrote %s\n", N,
+                 r.pairs_aligned, N * (N - 1) / 2, 100.0 * double(r.pairs_aligned) / double(N * (N - 1) / 2),
+                 r.log.size() - 1, r.converged ? " (converged)" : "", since(t_start), out_dir.string().c_str());
+  report.mode = intrinsic ? "intrinsic" : "extrinsic";
+  report.shapes = N;
+  for (const auto& s : col.skipped) report.skipped.emplace_back(s.file.string(), s.reason);
+  report.seconds_records = t_records;
+  report.seconds_fuzzy = seconds_fuzzy;
+  report.seconds_total = since(t_start);
+  for (const auto& it : r.log) report.iteration_seconds.push_back({it.align_seconds, it.embed_seconds, it.optimize_seconds});
+  return report;
+}
+
+}  // namespace shapestruct::cli
+
+namespace {
 
 const cli::register_command reg_fuzzy{"fuzzy", {"fuzzy correspondences of a folder of shapes (chapter 4)", fuzzy_usage, run_fuzzy}};
 const cli::register_command reg_fuzzy_map{"fuzzy-map", {"a dense .map between two shapes of a fuzzy collection", fuzzy_map_usage, run_fuzzy_map}};

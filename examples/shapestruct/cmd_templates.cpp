@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "templates_run.hpp"
 #include "shapestruct/templates/collection_runner.hpp"
 
 namespace {
@@ -16,39 +17,25 @@ using namespace shapestruct;
 int run_templates(const std::vector<std::string>& args) {
   cli::arg_reader reader(args);
   const std::string out = reader.option({"-o", "--output"});
-  const std::string tpl = reader.option({"--template", "-t"});
-  const long long threads = reader.integer({"--threads"}, 0);
-  const long long points = reader.integer({"--points"}, 1500);
-  const long long subset = reader.integer({"--learn-subset"}, 200);
-  const long long up = reader.integer({"--up"}, 1);
-  const long long parts = reader.integer({"--parts"}, 4);
-  const long long learn_best = reader.integer({"--learn-best"}, 2);
-  const bool no_learn = reader.flag("--no-learn");
-  const bool no_ply = reader.flag("--no-ply");
-  const bool no_points = reader.flag("--no-points");
+  cli::templates_cli_options o;
+  o.template_file = reader.option({"--template", "-t"});
+  o.threads = reader.integer({"--threads"}, 0);
+  o.points = reader.integer({"--points"}, 1500);
+  o.learn_subset = reader.integer({"--learn-subset"}, 200);
+  o.up = reader.integer({"--up"}, 1);
+  o.parts = reader.integer({"--parts"}, 4);
+  o.learn_best = reader.integer({"--learn-best"}, 2);
+  o.no_learn = reader.flag("--no-learn");
+  o.no_ply = reader.flag("--no-ply");
+  o.no_points = reader.flag("--no-points");
   const bool quiet = reader.flag("--quiet");
   const auto pos = reader.positionals();
   if (pos.size() != 1) throw cli::usage_error("expected one input folder DIR");
   if (out.empty()) throw cli::usage_error("-o OUT is required");
-  if (threads < 0 || points < 16 || subset < 1 || up < 0 || up > 2 || parts < 1 || learn_best < 1)
-    throw cli::usage_error(
-        "--threads >= 0, --points >= 16, --learn-subset >= 1, --up 0|1|2, --parts >= 1, --learn-best >= 1");
-  std::vector<part_template> templates;
-  if (!tpl.empty()) templates = read_templates(tpl);
+  cli::check_templates_options(o);
   const auto files = list_shape_files(pos[0]);
   if (files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + pos[0]);
-  collection_run_options opt;
-  opt.threads = static_cast<int>(threads);
-  opt.learn.threads = static_cast<int>(threads);
-  opt.sampling.points = static_cast<index_t>(points);
-  opt.sampling.up_axis = static_cast<int>(up);
-  opt.init.up_axis = static_cast<int>(up);
-  opt.init.parts = static_cast<int>(parts);
-  opt.init.learn_best = static_cast<int>(learn_best);
-  opt.learn_subset = static_cast<std::size_t>(subset);
-  opt.run_learning = !no_learn;
-  opt.write_ply = !no_ply;
-  opt.write_points = !no_points;
+  cli::templates_hooks opt;
   const auto start = std::chrono::steady_clock::now();
   auto phase_start = start;
   std::size_t first_done = 0;
@@ -76,15 +63,61 @@ int run_templates(const std::vector<std::string>& args) {
                   std::string(static_cast<std::size_t>(width - filled), '.').c_str(), done, total, el, left);
     std::cerr << line << (done == total ? "\n" : "") << std::flush;
   };
-  const auto sum = run_template_collection(files, out, templates, opt);
+  const auto sum = cli::run_templates_folder(files, out, o, opt);
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::cout << "templates: " << sum.templates.size() << " template(s), " << sum.processed << " shapes fitted, "
+  std::cout << "templates: " << sum.template_ids.size() << " template(s), " << sum.processed << " shapes fitted, "
             << sum.skipped << " already done, " << sum.failed << " failed, " << secs << " s\n";
-  for (std::size_t t = 0; t < sum.templates.size(); ++t)
-    std::cout << "  cluster " << t << " (" << sum.templates[t].id << "): " << sum.cluster_sizes[t] << " shapes\n";
+  for (std::size_t t = 0; t < sum.template_ids.size(); ++t)
+    std::cout << "  cluster " << t << " (" << sum.template_ids[t] << "): " << sum.cluster_sizes[t] << " shapes\n";
   std::cout << "results in " << out << " (templates.json, STEM.seg, STEM.fit.json, summary.json)\n";
   return sum.failed > 0 && sum.processed + sum.skipped == 0 ? 1 : 0;
 }
+
+}  // namespace
+
+namespace shapestruct::cli {
+
+std::vector<std::filesystem::path> shape_files_in(const std::filesystem::path& dir) { return list_shape_files(dir); }
+
+void check_templates_options(const templates_cli_options& o) {
+  if (o.threads < 0 || o.points < 16 || o.learn_subset < 1 || o.up < 0 || o.up > 2 || o.parts < 1 || o.learn_best < 1)
+    throw cli::usage_error(
+        "--threads >= 0, --points >= 16, --learn-subset >= 1, --up 0|1|2, --parts >= 1, --learn-best >= 1");
+}
+
+templates_run_summary run_templates_folder(const std::vector<std::filesystem::path>& files,
+                                           const std::filesystem::path& out, const templates_cli_options& o,
+                                           const templates_hooks& hooks) {
+  std::vector<part_template> templates;
+  if (!o.template_file.empty()) templates = read_templates(o.template_file);
+  collection_run_options opt;
+  opt.threads = static_cast<int>(o.threads);
+  opt.learn.threads = static_cast<int>(o.threads);
+  opt.sampling.points = static_cast<index_t>(o.points);
+  opt.sampling.up_axis = static_cast<int>(o.up);
+  opt.init.up_axis = static_cast<int>(o.up);
+  opt.init.parts = static_cast<int>(o.parts);
+  opt.init.learn_best = static_cast<int>(o.learn_best);
+  opt.learn_subset = static_cast<std::size_t>(o.learn_subset);
+  opt.run_learning = !o.no_learn;
+  opt.write_ply = !o.no_ply;
+  opt.write_points = !o.no_points;
+  opt.phase = hooks.phase;
+  opt.problem = hooks.problem;
+  opt.progress = hooks.progress;
+  const auto sum = run_template_collection(files, out, templates, opt);
+  templates_run_summary r;
+  for (const auto& t : sum.templates) r.template_ids.push_back(t.id);
+  r.cluster_sizes = sum.cluster_sizes;
+  r.processed = sum.processed;
+  r.skipped = sum.skipped;
+  r.failed = sum.failed;
+  return r;
+}
+
+}  // namespace shapestruct::cli
+
+namespace {
 
 const cli::register_command reg{
     "templates",

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+// The glue between `shapestruct fuzzy`'s options and the library's fuzzy pipeline, shared with
+// `shapestruct analyze` (defined in cmd_fuzzy.cpp, so including this header stays cheap).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <array>
+#include <utility>
+#include <vector>
+
+#include "progress_display.hpp"
+
+namespace shapestruct::cli {
+
+/// The options of `shapestruct fuzzy` (defaults as documented in its usage).
+struct fuzzy_cli_options {
+  std::string mode = "auto";  ///< auto | extrinsic | intrinsic
+  long long samples = 128;
+  long long threads = 0;
+  long long edges_per_shape = 5;
+  long long up = 1;
+  double diffusion_time = 10.0;
+  long long dimensions = 64;
+  bool quiet = false;
+  /// true (`shapestruct fuzzy`): collection.json holds "seconds" and iterations.tsv the seconds per step.
+  /// false (`shapestruct analyze`): neither does, so the files are the same on every run; the times are
+  /// returned in fuzzy_run_report instead.
+  bool timings_in_results = true;
+};
+
+/// What a run reports back.
+struct fuzzy_run_report {
+  int exit_code = 0;  ///< 0, or 1 when fewer than two usable shapes were left
+  std::string mode;   ///< "intrinsic" or "extrinsic" (empty when the run stopped before choosing)
+  std::size_t shapes = 0;
+  std::vector<std::pair<std::string, std::string>> skipped;  ///< (file, reason)
+  double seconds_records = 0, seconds_fuzzy = 0, seconds_total = 0;
+  std::vector<std::array<double, 3>> iteration_seconds;  ///< per round: align, embed, optimize
+};
+
+/// Throws usage_error when an option is out of range (the message names the options).
+void check_fuzzy_options(const fuzzy_cli_options& o);
+
+/// The pipeline of `shapestruct fuzzy` on `files`, writing exactly its files into `out` (see
+/// timings_in_results); `input_name` only names the folder in messages.
+fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& files, const std::filesystem::path& out,
+                                  const fuzzy_cli_options& o, progress_line& bar, const std::string& input_name);
+
+}  // namespace shapestruct::cli
