@@ -19,6 +19,8 @@
 
 #include <Eigen/Core>
 
+#include "shapestruct/templates/collection_runner.hpp"
+
 namespace shapestruct::cli {
 
 using rgb = std::array<std::uint8_t, 3>;
@@ -29,22 +31,9 @@ struct rgb_image {
   std::vector<std::uint8_t> pixels;  ///< width * height * 3
 };
 
-/// The 10-colour part palette of `shapestruct templates`' PLY files (collection_runner.hpp), so the report's
-/// colours match them; a negative label is dark grey.
-inline rgb part_color(long label) {
-  static constexpr std::array<rgb, 10> palette = {{{228, 26, 28},
-                                                   {55, 126, 184},
-                                                   {77, 175, 74},
-                                                   {152, 78, 163},
-                                                   {255, 127, 0},
-                                                   {255, 255, 51},
-                                                   {166, 86, 40},
-                                                   {247, 129, 191},
-                                                   {153, 153, 153},
-                                                   {0, 206, 209}}};
-  if (label < 0) return {40, 40, 40};
-  return palette[static_cast<std::size_t>(label) % palette.size()];
-}
+/// The part colours of `shapestruct templates`' PLY files, so the report's colours match them; a negative label
+/// is dark grey.
+inline rgb part_color(long label) { return detail::label_color(static_cast<index_t>(label)); }
 
 /// Renders triangles (V rows are points in a frame whose +y is up and whose front faces -z, the generator's
 /// convention) with flat shading from a fixed camera: 30 degrees to the front-left, 20 degrees above, orthographic,
