@@ -34,6 +34,7 @@
 #include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/eval/labeling_accuracy.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
+#include "shapestruct/io/file_bytes.hpp"
 #include "shapestruct/io/json.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/io/segmentation_file.hpp"
@@ -46,17 +47,14 @@ using steady = std::chrono::steady_clock;
 
 double since(steady::time_point t) { return std::chrono::duration<double>(steady::now() - t).count(); }
 
-/// Writes text atomically (temporary file + rename), so an interrupted run never leaves half a file.
-void write_atomic(const fs::path& path, const std::string& text) {
-  const std::string tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw io_error(file_error::cannot_open, tmp, 0, 0, "cannot open for writing");
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.flush();
-    if (!out) throw io_error(file_error::write_failed, tmp, 0, 0, "could not write the whole file");
-  }
-  fs::rename(tmp, path);
+/// Writes text atomically (the library's temporary file + rename), so an interrupted run never leaves half a file.
+void write_atomic(const fs::path& path, const std::string& text) { io_detail::write_file_atomically(path, text); }
+
+/// A temporary file an interrupted writer left behind: NAME.tmp (templates, thumbnails) or .NAME.tmp-... (the
+/// library's write_file_atomically). Not a result: never listed or counted.
+bool is_temporary(const fs::path& p) {
+  const std::string name = p.filename().string();
+  return p.extension() == ".tmp" || (name.rfind('.', 0) == 0 && name.find(".tmp-") != std::string::npos);
 }
 
 void write_json_atomic(const fs::path& path, const json_value& v) { write_atomic(path, to_json_string(v) + "\n"); }
@@ -755,13 +753,13 @@ json_value list_outputs(const fs::path& out) {
       if (collapsed.count(rel)) {
         long long n = 0;
         for (const auto& e : fs::directory_iterator(it->path()))
-          if (e.is_regular_file() && e.path().extension() != ".tmp") ++n;
+          if (e.is_regular_file() && !is_temporary(e.path())) ++n;
         folders[rel] = n;
         it.disable_recursion_pending();
       }
       continue;
     }
-    if (rel == "manifest.json" || rel == "timings.json" || rel == "timings.js" || it->path().extension() == ".tmp") continue;
+    if (rel == "manifest.json" || rel == "timings.json" || rel == "timings.js" || is_temporary(it->path())) continue;
     files.push_back(rel);
   }
   std::sort(files.begin(), files.end());
