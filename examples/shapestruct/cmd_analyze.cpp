@@ -877,6 +877,10 @@ int run_analyze(const std::vector<std::string>& args) {
   const auto all_files = cli::shape_files_in(s.input);
   if (all_files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + pos[0]);
   fs::create_directories(s.out);
+  // Temporaries of writes cut short by an interruption (never listed, never read): cleared before any rank writes.
+  if (s.share.leader())
+    for (auto it = fs::recursive_directory_iterator(s.out); it != fs::recursive_directory_iterator(); ++it)
+      if (it->is_regular_file() && is_temporary(it->path())) fs::remove(it->path());
   timings_file timings;
   timings.load(s.out);
   const auto t_run = steady::now();
