@@ -25,6 +25,7 @@
 
 #include "command.hpp"
 #include "fuzzy_run.hpp"
+#include "process_group.hpp"
 #include "progress_display.hpp"
 #include "report_fuzzy.hpp"
 #include "templates_run.hpp"
@@ -128,6 +129,9 @@ struct analyze_settings {
   long long threads = 0;
   std::string mode = "auto";
   bool quiet = false;
+  /// The processes sharing the run (MPI ranks of shapestruct-mpi): each takes its share of the shapes and
+  /// pairs of every stage; rank 0 alone writes the files that sum up a stage and speaks on the terminal.
+  work_share share{};
 };
 
 /// What the inspect stage decided about one shape (inspect/summary.json).
@@ -149,7 +153,11 @@ void run_inspect_stage(const analyze_settings& s, const std::vector<fs::path>& f
   std::mutex m;
   std::size_t done = 0;
   const check_mesh_options options{.max_examples = 10};
-  detail::parallel_for(files.size(), detail::resolve_threads(static_cast<int>(s.threads), "analyze"), [&](std::size_t i) {
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < files.size(); ++i)
+    if (s.share.owns(i)) mine.push_back(i);
+  detail::parallel_for(mine.size(), detail::resolve_threads(static_cast<int>(s.threads), "analyze"), [&](std::size_t j) {
+    const std::size_t i = mine[j];
     shape_check& c = checks[i];
     c.name = files[i].stem().string();
     c.file = files[i].filename().string();
@@ -187,9 +195,30 @@ void run_inspect_stage(const analyze_settings& s, const std::vector<fs::path>& f
     }
     write_atomic(dir / (c.file + ".json"), text);  // FILE.json: two files may share a stem
     std::lock_guard<std::mutex> g(m);
-    bar.update("shapes", ++done, files.size());
+    bar.update("shapes", ++done, mine.size());
   });
   bar.finish();
+  if (s.share.distributed()) {
+    std::vector<std::string> items;
+    for (const auto i : mine) {
+      const auto& c = checks[i];
+      items.insert(items.end(), {std::to_string(i), c.name, c.file, c.usable ? "1" : "0", c.reason,
+                                 c.closed_genus0 ? "1" : "0", c.topology});
+    }
+    for (const auto& message : s.share.all_gather(detail::pack_strings(items))) {
+      const auto got = detail::unpack_strings(message);
+      for (std::size_t k = 0; k + 6 < got.size(); k += 7) {
+        shape_check& c = checks[std::stoul(got[k])];
+        c.name = got[k + 1];
+        c.file = got[k + 2];
+        c.usable = got[k + 3] == "1";
+        c.reason = got[k + 4];
+        c.closed_genus0 = got[k + 5] == "1";
+        c.topology = got[k + 6];
+      }
+    }
+    if (!s.share.leader()) return;
+  }
   // The later stages name their outputs by file stem: of several files with one stem, the first is used.
   std::map<std::string, std::string> first_with_stem;
   for (auto& c : checks) {
@@ -515,7 +544,11 @@ void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& fi
   std::vector<char> has_parts(files.size(), 0), has_shape(files.size(), 0);
   std::mutex m;
   std::size_t done = 0;
-  detail::parallel_for(files.size(), detail::resolve_threads(static_cast<int>(s.threads), "analyze"), [&](std::size_t i) {
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < files.size(); ++i)
+    if (s.share.owns(i)) mine.push_back(i);
+  detail::parallel_for(mine.size(), detail::resolve_threads(static_cast<int>(s.threads), "analyze"), [&](std::size_t j) {
+    const std::size_t i = mine[j];
     const auto& c = checks[i];
     if (c.usable) {
       try {
@@ -554,9 +587,25 @@ void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& fi
       }
     }
     std::lock_guard<std::mutex> g(m);
-    bar.update("thumbnails", ++done, files.size());
+    bar.update("thumbnails", ++done, mine.size());
   });
   bar.finish();
+  if (s.share.distributed()) {
+    std::vector<std::string> items;
+    for (const auto i : mine)
+      items.push_back(std::to_string(i) + " " + char('0' + has_shape[i]) + char('0' + has_parts[i]) +
+                      char('0' + has_variance[i]) + char('0' + has_transfer[i]));
+    for (const auto& message : s.share.all_gather(detail::pack_strings(items)))
+      for (const auto& item : detail::unpack_strings(message)) {
+        const std::size_t space = item.find(' ');
+        const std::size_t i = std::stoul(item.substr(0, space));
+        has_shape[i] = char(item[space + 1] - '0');
+        has_parts[i] = char(item[space + 2] - '0');
+        has_variance[i] = char(item[space + 3] - '0');
+        has_transfer[i] = char(item[space + 4] - '0');
+      }
+    if (!s.share.leader()) return;
+  }
   for (std::size_t t = 0; t < templates.size(); ++t)
     cli::write_png(dir / "templates" / ("template_" + std::to_string(t) + ".png"), render_boxes(templates[t]));
 
@@ -803,6 +852,8 @@ int run_analyze(const std::vector<std::string>& args) {
   topt.template_file = reader.option({"--template", "-t"});
   topt.learn_subset = reader.integer({"--learn-subset"}, 200);
   s.quiet = reader.flag("--quiet");
+  s.share = cli::run_share();
+  s.quiet = s.quiet || !s.share.leader();  // one progress display: rank 0's
   const auto pos = reader.positionals();
   if (pos.size() != 1) throw cli::usage_error("expected one input folder DIR");
   if (s.out.empty()) throw cli::usage_error("-o OUT is required");
@@ -814,16 +865,22 @@ int run_analyze(const std::vector<std::string>& args) {
   s.truth = s.truth_given ? fs::path(truth) : s.input;
   if (s.truth_given && !fs::is_directory(s.truth)) throw cli::usage_error("--truth " + truth + " is not a folder");
   topt.threads = s.threads;
+  topt.share = s.share;
   cli::fuzzy_cli_options fopt;
   fopt.mode = s.mode;
   fopt.threads = s.threads;
   fopt.quiet = s.quiet;
   fopt.timings_in_results = false;
+  fopt.share = s.share;
   cli::check_templates_options(topt);
   cli::check_fuzzy_options(fopt);
   const auto all_files = cli::shape_files_in(s.input);
   if (all_files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + pos[0]);
   fs::create_directories(s.out);
+  // Temporaries of writes cut short by an interruption (never listed, never read): cleared before any rank writes.
+  if (s.share.leader())
+    for (auto it = fs::recursive_directory_iterator(s.out); it != fs::recursive_directory_iterator(); ++it)
+      if (it->is_regular_file() && is_temporary(it->path())) fs::remove(it->path());
   timings_file timings;
   timings.load(s.out);
   const auto t_run = steady::now();
@@ -833,10 +890,13 @@ int run_analyze(const std::vector<std::string>& args) {
   json_value::array stage_log;
   int stage_no = 0;
   // Runs a stage unless OUT/<stage>/.done exists; .done is written last, atomically, with the stage's status.
+  // With several processes, rank 0's view of .done decides for all, and every rank finishes the body (the
+  // exchange below) before rank 0 marks the stage done.
+  const bool leader = s.share.leader();
   auto stage = [&](const std::string& name, const std::function<std::string()>& body) {
     ++stage_no;
     const fs::path done = s.out / name / ".done";
-    if (fs::exists(done)) {
+    if (s.share.all_gather(fs::exists(done) ? "done" : "").front() == "done") {
       say("stage " + std::to_string(stage_no) + "/5 " + name + ": already done (" + (s.out / name).string() + "), skipped");
       return;
     }
@@ -844,6 +904,8 @@ int run_analyze(const std::vector<std::string>& args) {
     const auto t0 = steady::now();
     fs::create_directories(s.out / name);
     const std::string status = body();
+    (void)s.share.all_gather({});
+    if (!leader) return;
     write_atomic(done, status + "\n");
     timings.seconds[name] = since(t0);
     timings.save(s.out);
@@ -864,9 +926,9 @@ int run_analyze(const std::vector<std::string>& args) {
   std::vector<fs::path> usable;
   for (std::size_t i = 0; i < all_files.size(); ++i)
     if (checks[i].usable) usable.push_back(all_files[i]);
-    else std::fprintf(stderr, "analyze: skipped %s: %s\n", checks[i].file.c_str(), checks[i].reason.c_str());
+    else if (leader) std::fprintf(stderr, "analyze: skipped %s: %s\n", checks[i].file.c_str(), checks[i].reason.c_str());
   if (usable.empty()) {
-    std::fprintf(stderr, "analyze: no usable shape in %s\n", pos[0].c_str());
+    if (leader) std::fprintf(stderr, "analyze: no usable shape in %s\n", pos[0].c_str());
     return 1;
   }
 
@@ -881,7 +943,7 @@ int run_analyze(const std::vector<std::string>& args) {
       say("templates: " + m);
       if (m.rfind("labeling", 0) != 0) ticker.start("templates: " + m);  // labeling reports its own progress
     };
-    hooks.problem = [&](const std::string& f, const std::string& m) { std::fprintf(stderr, "\ranalyze: templates: skipped %s: %s\n", f.c_str(), m.c_str()); };
+    hooks.problem = [&](const std::string& f, const std::string& m) { if (leader) std::fprintf(stderr, "\ranalyze: templates: skipped %s: %s\n", f.c_str(), m.c_str()); };
     hooks.progress = [&](std::size_t d, std::size_t t) { bar.update("labeling", d, t); };
     const auto sum = cli::run_templates_folder(usable, s.out / "templates", topt, hooks);
     ticker.stop();
@@ -895,7 +957,7 @@ int run_analyze(const std::vector<std::string>& args) {
   if (truth_known) {
     stage("evaluate", [&] {
       cli::progress_line bar(s.quiet, "evaluate/");
-      run_evaluate_stage(s, all_files, checks, bar);
+      if (leader) run_evaluate_stage(s, all_files, checks, bar);  // small: one process
       return std::string("done");
     });
   } else {
@@ -920,6 +982,7 @@ int run_analyze(const std::vector<std::string>& args) {
     return std::string("done");
   });
 
+  if (!leader) return 0;
   // Manifest (the same on every run: no times in it) and the summary on the terminal.
   const auto [mode, why] = mode_and_reason(s, checks);
   const auto skipped = collect_skipped(s, checks);

@@ -146,10 +146,13 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
   ro.record.metric = o.mode == "extrinsic" ? sample_metric::euclidean : sample_metric::automatic;
   ro.cache_folder = out_dir / "records";
   ro.on_progress = [&](std::size_t d, std::size_t t) { bar.update("records", d, t); };
+  ro.share = o.share;
+  const bool writer = o.share.leader();  // with several ranks, rank 0 alone writes the results and speaks
   auto col = make_collection_records(files, ro);
   bar.finish();
   const double t_records = since(t_start);
-  for (const auto& s : col.skipped) std::fprintf(stderr, "fuzzy: skipped %s: %s\n", s.file.string().c_str(), s.reason.c_str());
+  if (writer)
+    for (const auto& s : col.skipped) std::fprintf(stderr, "fuzzy: skipped %s: %s\n", s.file.string().c_str(), s.reason.c_str());
   bool all_genus0 = !col.records.empty();
   for (const auto& r : col.records) all_genus0 = all_genus0 && r.closed_genus0;
   const bool intrinsic = o.mode == "intrinsic" || (o.mode == "auto" && all_genus0);
@@ -157,11 +160,11 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
     // Intrinsic alignment needs closed genus-0 surfaces: the others are left out, by name.
     const std::size_t before = col.skipped.size();
     keep_intrinsic_shapes(col, "not a closed genus-0 surface (intrinsic mode needs one; --mode extrinsic keeps it)");
-    for (std::size_t i = before; i < col.skipped.size(); ++i)
+    for (std::size_t i = before; i < col.skipped.size() && writer; ++i)
       std::fprintf(stderr, "fuzzy: left out %s: %s\n", col.skipped[i].file.string().c_str(), col.skipped[i].reason.c_str());
   }
   if (col.records.size() < 2) {
-    std::fprintf(stderr, "fuzzy: fewer than two usable shapes in %s; nothing to correspond\n", input_name.c_str());
+    if (writer) std::fprintf(stderr, "fuzzy: fewer than two usable shapes in %s; nothing to correspond\n", input_name.c_str());
     for (const auto& s : col.skipped) report.skipped.emplace_back(s.file.string(), s.reason);
     report.exit_code = 1;
     return report;
@@ -177,6 +180,7 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
   fo.embedding.time = o.diffusion_time;
   fo.embedding.dimensions = static_cast<index_t>(o.dimensions);
   fo.cache_folder = out_dir / "pairs";
+  fo.share = o.share;
   fo.on_progress = [&](const std::string& stage, std::size_t d, std::size_t t) { bar.update(stage, d, t); };
   const auto t_fuzzy = steady::now();
   fuzzy_collection_result r;
@@ -194,12 +198,15 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
   const double seconds_fuzzy = since(t_fuzzy);
   json_value::array disconnected;
   for (const index_t k : r.disconnected) {
-    std::fprintf(stderr, "fuzzy: %s is not connected to the rest of the collection: every alignment to it was "
+    if (writer) std::fprintf(stderr, "fuzzy: %s is not connected to the rest of the collection: every alignment to it was "
                  "rejected, so its correspondences to the others mean nothing\n", col.files[std::size_t(k)].string().c_str());
     disconnected.push_back(json_value(col.records[std::size_t(k)].name));
   }
 
   // 3. Outputs.
+  report.mode = intrinsic ? "intrinsic" : "extrinsic";
+  report.shapes = col.records.size();
+  if (!writer) return report;
   write_fuzzy_correspondence(out_dir / "fuzzy.bin", r.fuzzy);
   {
     std::string s = "# shape sample x y z vertex  (vertex -1: a surface point of a soup)\n";

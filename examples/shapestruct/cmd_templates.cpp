@@ -105,6 +105,7 @@ templates_run_summary run_templates_folder(const std::vector<std::filesystem::pa
   opt.phase = hooks.phase;
   opt.problem = hooks.problem;
   opt.progress = hooks.progress;
+  opt.share = o.share;
   const auto sum = run_template_collection(files, out, templates, opt);
   templates_run_summary r;
   for (const auto& t : sum.templates) r.template_ids.push_back(t.id);

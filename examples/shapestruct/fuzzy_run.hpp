@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "progress_display.hpp"
+#include "shapestruct/core/work_share.hpp"
 
 namespace shapestruct::cli {
 
@@ -27,6 +28,9 @@ struct fuzzy_cli_options {
   /// false (`shapestruct analyze`): neither does, so the files are the same on every run; the times are
   /// returned in fuzzy_run_report instead.
   bool timings_in_results = true;
+  /// Not an option: analyze's process group. Each MPI rank makes its share of the records and alignments
+  /// (exchanged through OUT/records and OUT/pairs); every rank computes the rest alike; rank 0 writes.
+  work_share share{};
 };
 
 /// What a run reports back.

@@ -4,10 +4,13 @@
 #include <iostream>
 
 #include "command.hpp"
+#include "process_group.hpp"
 #include "shapestruct/config.hpp"
 #include "shapestruct/core/errors.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_tool(int argc, char** argv) {
   using namespace shapestruct::cli;
   const std::vector<std::string> all(argv + 1, argv + argc);
   auto print_help = [] {
@@ -28,6 +31,11 @@ int main(int argc, char** argv) {
   if (it == registry().end()) {
     std::cerr << "shapestruct: unknown command '" << all[0] << "'\n";
     print_help();
+    return 2;
+  }
+  if (run_share().distributed() && !process_session::runs_across_processes(all[0])) {
+    std::cerr << "shapestruct: '" << all[0] << "' runs in one process; of the commands only 'analyze' runs across "
+              << "MPI ranks (run '" << all[0] << "' without mpirun)\n";
     return 2;
   }
   const std::vector<std::string> args(all.begin() + 1, all.end());
@@ -52,4 +60,11 @@ int main(int argc, char** argv) {
     std::cerr << "shapestruct " << all[0] << ": " << e.what() << "\n";
     return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  shapestruct::cli::process_session session(argc, argv);
+  return session.finish(run_tool(argc, argv));
 }

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "shapestruct/core/work_share.hpp"
+
 namespace shapestruct::cli {
 
 /// The options of `shapestruct templates` (defaults as documented in its usage).
@@ -23,6 +25,7 @@ struct templates_cli_options {
   bool no_learn = false;
   bool no_ply = false;
   bool no_points = false;
+  work_share share{};  ///< not an option: analyze's process group (several MPI ranks share the run)
 };
 
 /// Callbacks of a run (any may be empty): as collection_run_options' progress / problem / phase.

@@ -15,6 +15,7 @@
 #include "shapestruct/generate/primitive_meshes.hpp"
 #include "shapestruct/geometry/dijkstra_geodesics.hpp"
 #include "shapestruct/io/write_mesh.hpp"
+#include "support/thread_exchange.hpp"
 
 namespace ss = shapestruct;
 namespace fs = std::filesystem;
@@ -154,5 +155,44 @@ TEST_CASE("collection records: unreadable, empty and non-finite files are skippe
   // A second run reads the cached records: identical.
   const auto again = ss::make_collection_records(files, o);
   CHECK(again.records[0].samples == c.records[0].samples);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("collection records: three processes sharing the files give one process's records and skips") {
+  const auto dir = fs::temp_directory_path() / "shapestruct_test_collection_records_shared";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  ss::write_mesh(dir / "a.off", ss::make_icosphere<double>(2));
+  ss::write_mesh(dir / "b.off", ss::make_box<double>(1, 1, 1));
+  ss::write_mesh(dir / "c.off", ss::make_icosphere<double>(1));
+  std::ofstream(dir / "nan.off") << "OFF\n3 1 0\n0 0 0\n1 0 nan\n0 1 0\n3 0 1 2\n";
+  const std::vector<fs::path> files{dir / "a.off", dir / "nan.off", dir / "b.off", dir / "c.off", dir / "missing.off"};
+  ss::collection_records_options o;
+  o.record.samples = 8;
+  o.record.surface_points = 64;
+  const auto alone = ss::make_collection_records(files, o);
+  o.cache_folder = dir / "records";
+  const auto parts = ss::test::run_parts(3, [&](const ss::work_share& share) {
+    auto own = o;
+    own.share = share;
+    return ss::make_collection_records(files, own);
+  });
+  for (const auto& c : parts) {
+    REQUIRE(c.records.size() == alone.records.size());
+    for (std::size_t k = 0; k < c.records.size(); ++k) {
+      CHECK(c.records[k].name == alone.records[k].name);
+      CHECK(c.records[k].samples == alone.records[k].samples);
+      CHECK(c.records[k].descriptor == alone.records[k].descriptor);
+    }
+    REQUIRE(c.skipped.size() == 2);
+    CHECK(c.skipped[0].file == files[1]);
+    CHECK(c.skipped[1].file == files[4]);
+    CHECK(c.skipped[0].reason == alone.skipped[0].reason);
+  }
+  // Sharing needs the folder the parts exchange records through.
+  o.cache_folder.clear();
+  ss::test::thread_exchange ex(2);
+  o.share = ex.share(0);
+  CHECK_THROWS_AS((void)ss::make_collection_records(files, o), ss::invalid_input);
   fs::remove_all(dir);
 }

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <random>
 #include <set>
+#include <string>
+#include <thread>
 #include <vector>
 
 #include <Eigen/Core>
@@ -17,6 +19,7 @@
 #include "shapestruct/fuzzy/diffusion_embedding.hpp"
 #include "shapestruct/fuzzy/fuzzy_collection.hpp"
 #include "shapestruct/fuzzy/fuzzy_correspondence.hpp"
+#include "support/thread_exchange.hpp"
 
 namespace ss = shapestruct;
 using sparse_scores = Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>;
@@ -319,5 +322,63 @@ TEST_CASE("fuzzy collection: interrupting the pairwise stage and resuming gives 
   const auto resumed = ss::compute_fuzzy_correspondences(records, aligner, o);
   CHECK(resumed.pairs_computed == resumed.pairs_aligned - std::size_t(cached));
   check_same_result(resumed, whole);
+  std::filesystem::remove_all(dir);
+}
+
+namespace {
+/// The planted aligner that fails on one pair.
+struct failing_aligner {
+  planted_aligner inner;
+  std::pair<ss::index_t, ss::index_t> bad;
+  ss::pair_alignment align(ss::index_t a, ss::index_t b) const {
+    if (std::pair{a, b} == bad) throw std::runtime_error("this pair fails");
+    return inner.align(a, b);
+  }
+};
+}  // namespace
+
+TEST_CASE("fuzzy collection: three processes sharing the alignments give the one-process result") {
+  const int N = 10, K = 8;
+  const auto records = planted_records(N, K);
+  const planted_aligner aligner{K, {2, 3}};
+  const auto dir = std::filesystem::temp_directory_path() / "shapestruct_test_fuzzy_shared";
+  std::filesystem::remove_all(dir);
+  ss::fuzzy_collection_options o;
+  o.embedding.dimensions = 12;
+  o.threads = 1;
+  const auto alone = ss::compute_fuzzy_correspondences(records, aligner, o);
+  o.cache_folder = dir;
+  const auto parts = ss::test::run_parts(3, [&](const ss::work_share& share) {
+    auto own = o;
+    own.share = share;
+    return ss::compute_fuzzy_correspondences(records, aligner, own);
+  });
+  std::size_t computed = 0;
+  for (const auto& r : parts) {
+    check_same_result(r, alone);
+    CHECK(r.pairs_aligned == alone.pairs_aligned);
+    computed += r.pairs_computed;
+  }
+  CHECK(computed == alone.pairs_aligned);  // every pair aligned once, by one part
+  CHECK(parts[1].pairs_computed > 0);
+  // A pair that fails in one part stops every part (none waits forever); the failing part rethrows the
+  // aligner's own exception.
+  std::filesystem::remove_all(dir);
+  const failing_aligner failing{aligner, {0, 1}};
+  std::atomic<int> failed{0};
+  ss::test::thread_exchange ex(2);
+  std::vector<std::thread> threads;
+  for (std::size_t p = 0; p < 2; ++p)
+    threads.emplace_back([&, p] {
+      auto own = o;
+      own.share = ex.share(p);
+      try {
+        (void)ss::compute_fuzzy_correspondences(records, failing, own);
+      } catch (const std::runtime_error& e) {
+        if (std::string(e.what()).find("fails") != std::string::npos) ++failed;
+      }
+    });
+  for (auto& t : threads) t.join();
+  CHECK(failed == 2);
   std::filesystem::remove_all(dir);
 }

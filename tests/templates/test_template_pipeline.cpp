@@ -12,6 +12,7 @@
 #include "shapestruct/templates/collection_runner.hpp"
 #include "support/fixtures.hpp"
 #include "support/legacy_mesh.hpp"
+#include "support/thread_exchange.hpp"
 
 using namespace shapestruct;
 namespace fs = std::filesystem;
@@ -240,5 +241,43 @@ TEST_CASE("run_template_collection writes per-shape results, skips a bad file, r
   CHECK(s2.skipped == 3);
   CHECK(slurp(dir / "out" / "c2.seg") == seg2);
   CHECK(slurp(dir / "out" / "c2.fit.json") == rec2);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("run_template_collection: two processes sharing one folder write one process's files, byte for byte") {
+  const fs::path dir = fs::temp_directory_path() / "shapestruct_tpl_shared";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "in");
+  const assembly_generator<double> gen(assembly_kind::chair, 2);
+  for (int i = 0; i < 5; ++i) write_mesh(dir / "in" / ("c" + std::to_string(i) + ".off"), gen.generate(static_cast<std::uint64_t>(i)).mesh);
+  { std::ofstream(dir / "in" / "broken.off") << "OFF\n3 1 0\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n"; }
+  collection_run_options opt;
+  opt.sampling.points = 400;
+  opt.learn_subset = 4;
+  opt.threads = 1;
+  const auto files = list_shape_files(dir / "in");
+  const auto alone = run_template_collection(files, dir / "alone", {synthetic_chair_template()}, opt);
+  const auto parts = test::run_parts(2, [&](const work_share& share) {
+    auto own = opt;
+    own.share = share;
+    return run_template_collection(files, dir / "shared", {synthetic_chair_template()}, own);
+  });
+  for (const auto& s : parts) {
+    CHECK(s.cluster_sizes == alone.cluster_sizes);
+    CHECK(s.failed == 1);
+    CHECK(s.processed == alone.processed);
+  }
+  std::vector<std::string> names;
+  for (const auto& e : fs::recursive_directory_iterator(dir / "alone"))
+    if (e.is_regular_file()) names.push_back(fs::relative(e.path(), dir / "alone").string());
+  std::sort(names.begin(), names.end());
+  std::size_t shared_files = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir / "shared")) shared_files += e.is_regular_file() ? 1 : 0;
+  CHECK(shared_files == names.size());
+  REQUIRE(names.size() > 10);
+  for (const auto& n : names) {
+    INFO(n);
+    CHECK(slurp(dir / "shared" / n) == slurp(dir / "alone" / n));
+  }
   fs::remove_all(dir);
 }

@@ -3,10 +3,13 @@
 #pragma once
 
 #include <chrono>
+#include <exception>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
+#include <stdexcept>
 #include <set>
 #include <string>
 #include <utility>
@@ -17,6 +20,7 @@
 #include "shapestruct/collection/shape_record.hpp"
 #include "shapestruct/core/concepts/shape_aligner.hpp"
 #include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/work_share.hpp"
 #include "shapestruct/detail/parallel_for.hpp"
 
 namespace shapestruct {
@@ -57,51 +61,96 @@ class alignment_store {
 
   /// Makes sure every pair in `pairs` is aligned: read from the cache folder where a file exists, else aligned
   /// with `aligner` on up to `threads` threads and written. `on_done(done, total)` reports progress (called
-  /// under a lock, from any worker).
-  /// \throws whatever the aligner throws for a pair (after the other workers stopped), io_error when a cache
-  ///         file cannot be written.
+  /// under a lock, from any worker). With a distributed `share`, this process aligns only its own pairs (every
+  /// share-th of the requested ones), then reads the others' from the cache folder (required then); every
+  /// process must call ensure with the same pairs at the same point.
+  /// \throws whatever the aligner throws for a pair (after the other workers stopped; on the other processes of
+  ///         a share, a std::runtime_error naming the pair), io_error when a cache file cannot be written or read.
   template <ShapeAligner Aligner>
   void ensure(const std::vector<key>& pairs, const Aligner& aligner, int threads,
-              const std::function<void(std::size_t, std::size_t)>& on_done = {}) {
-    std::vector<key> todo;
+              const std::function<void(std::size_t, std::size_t)>& on_done = {}, const work_share& share = {}) {
+    share.validate("alignment_store::ensure");
+    if (share.distributed() && folder_.empty())
+      throw invalid_input(input_error::bad_parameter, no_index,
+                          "alignment_store::ensure: several processes share alignments through the cache folder: set one");
+    std::vector<key> requested;  // new pairs, in request order: the same list on every process
     std::set<key> queued;
     for (const auto& p0 : pairs) {
       const key p = make_key(p0.first, p0.second);
-      if (alignments_.count(p) || !queued.insert(p).second) continue;
-      if (!folder_.empty() && std::filesystem::exists(file_of(p))) {
-        try {
-          pair_alignment a = read_pair_alignment(file_of(p));
-          if (a.source == p.first && a.target == p.second) {
-            alignments_.emplace(p, std::move(a));
-            continue;
-          }
-        } catch (const io_error&) {
-          // a damaged cache file (an interrupted write of an older version): align the pair again
-        }
-      }
-      todo.push_back(p);
+      if (!alignments_.count(p) && queued.insert(p).second) requested.push_back(p);
+    }
+    std::vector<key> todo;
+    for (std::size_t r = 0; r < requested.size(); ++r) {
+      if (!share.owns(r)) continue;
+      if (auto cached = read_cached(requested[r])) alignments_.emplace(requested[r], std::move(*cached));
+      else todo.push_back(requested[r]);
     }
     std::vector<pair_alignment> results(todo.size());
+    std::vector<std::string> failure(todo.size());
+    std::exception_ptr first_failure;
     std::mutex m;
     std::size_t done = 0;
     const unsigned workers = detail::resolve_threads(threads, "alignment_store::ensure");
     detail::parallel_for(static_cast<index_t>(todo.size()), workers, [&](index_t i) {
-      const auto t0 = std::chrono::steady_clock::now();
-      pair_alignment a = aligner.align(todo[std::size_t(i)].first, todo[std::size_t(i)].second);
-      a.source = todo[std::size_t(i)].first;
-      a.target = todo[std::size_t(i)].second;
-      a.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      if (!folder_.empty()) write_pair_alignment(file_of(todo[std::size_t(i)]), a);
-      results[std::size_t(i)] = std::move(a);
+      const key& p = todo[std::size_t(i)];
+      try {
+        const auto t0 = std::chrono::steady_clock::now();
+        pair_alignment a = aligner.align(p.first, p.second);
+        a.source = p.first;
+        a.target = p.second;
+        a.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (!folder_.empty()) write_pair_alignment(file_of(p), a);
+        results[std::size_t(i)] = std::move(a);
+      } catch (const std::exception& e) {
+        if (!share.distributed()) throw;  // one process: the loop stops and rethrows it as it is
+        std::lock_guard lock(m);
+        failure[std::size_t(i)] = e.what();
+        if (!first_failure) first_failure = std::current_exception();
+      }
       std::lock_guard lock(m);
       ++done;
       if (on_done) on_done(done, todo.size());
     });
-    for (std::size_t i = 0; i < todo.size(); ++i) alignments_.emplace(todo[i], std::move(results[i]));
+    for (std::size_t i = 0; i < todo.size(); ++i)
+      if (failure[i].empty()) alignments_.emplace(todo[i], std::move(results[i]));
     computed_ += todo.size();
+    if (!share.distributed()) return;
+    std::string failed_pair;  // the first failure of any process, in part order
+    std::vector<std::string> mine;
+    for (std::size_t i = 0; i < todo.size() && mine.empty(); ++i)
+      if (!failure[i].empty()) mine = {pair_name(todo[i]), failure[i]};
+    for (const auto& message : share.all_gather(detail::pack_strings(mine))) {
+      const auto items = detail::unpack_strings(message);
+      if (failed_pair.empty() && items.size() == 2) failed_pair = items[0] + ": " + items[1];
+    }
+    if (first_failure) std::rethrow_exception(first_failure);
+    if (!failed_pair.empty()) throw std::runtime_error("alignment of " + failed_pair + " (in another process)");
+    for (std::size_t r = 0; r < requested.size(); ++r) {
+      if (share.owns(r)) continue;
+      auto cached = read_cached(requested[r]);
+      if (!cached)
+        throw io_error(file_error::cannot_open, file_of(requested[r]).string(), 0, 0,
+                       "the alignment made by another process is missing or damaged");
+      alignments_.emplace(requested[r], std::move(*cached));
+    }
   }
 
  private:
+  /// The cached alignment of p, if its file exists and holds p; nullopt otherwise (also for a damaged file, the
+  /// leftover of an interrupted write of an older version: the pair is aligned again).
+  [[nodiscard]] std::optional<pair_alignment> read_cached(const key& p) const {
+    if (folder_.empty() || !std::filesystem::exists(file_of(p))) return std::nullopt;
+    try {
+      pair_alignment a = read_pair_alignment(file_of(p));
+      if (a.source == p.first && a.target == p.second) return a;
+    } catch (const io_error&) {
+    }
+    return std::nullopt;
+  }
+  [[nodiscard]] std::string pair_name(const key& p) const {
+    return (*records_)[std::size_t(p.first)].name + " -> " + (*records_)[std::size_t(p.second)].name;
+  }
+
   const std::vector<shape_record>* records_;
   std::filesystem::path folder_;
   std::map<key, pair_alignment> alignments_;

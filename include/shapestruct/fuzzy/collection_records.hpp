@@ -18,6 +18,7 @@
 #include "shapestruct/collection/shape_record.hpp"
 #include "shapestruct/collection/spherical_harmonic_descriptor.hpp"
 #include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/work_share.hpp"
 #include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 
@@ -42,17 +43,26 @@ struct collection_records_options {
   spherical_harmonic_descriptor_options descriptor{};
   std::filesystem::path cache_folder{};  ///< records are cached here as NAME.rec ("" = not cached)
   int threads = 0;                       ///< 0 = all cores; the result does not depend on it
-  std::function<void(std::size_t, std::size_t)> on_progress{};  ///< (done, total)
+  std::function<void(std::size_t, std::size_t)> on_progress{};  ///< (done, total) of this part's files
+  /// Several processes: each makes the records of its own files, then reads the others' from the cache folder
+  /// (required then). The result is the same as with one process.
+  work_share share{};
 };
 
 /// Reads every file, makes its record (make_shape_record with the spherical-harmonic descriptor) and forgets
 /// the mesh, in parallel; with a cache folder, a record already there is read instead. A file that cannot be
 /// read, is empty, has a non-finite coordinate or is otherwise unusable is reported in `skipped` with the reason
 /// and left out; the others keep their order. Shape names are the file stems; a stem seen twice is skipped.
-/// \throws io_error if the cache folder cannot be created.
+/// \throws io_error if the cache folder cannot be created; invalid_input (bad_parameter) for a distributed
+///         share without a cache folder.
 [[nodiscard]] inline collection_records make_collection_records(const std::vector<std::filesystem::path>& files,
                                                                const collection_records_options& options = {}) {
   namespace fs = std::filesystem;
+  const work_share& share = options.share;
+  share.validate("make_collection_records");
+  if (share.distributed() && options.cache_folder.empty())
+    throw invalid_input(input_error::bad_parameter, no_index,
+                        "make_collection_records: several processes share records through the cache folder: set one");
   if (!options.cache_folder.empty()) {
     std::error_code ec;
     fs::create_directories(options.cache_folder, ec);
@@ -66,7 +76,11 @@ struct collection_records_options {
   std::mutex m;
   std::size_t done = 0;
   const unsigned workers = detail::resolve_threads(options.threads, "make_collection_records");
-  detail::parallel_for(files.size(), workers, [&](std::size_t i) {
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < files.size(); ++i)
+    if (share.owns(i)) mine.push_back(i);
+  detail::parallel_for(mine.size(), workers, [&](std::size_t j) {
+    const std::size_t i = mine[j];
     const std::string stem = files[i].stem().string();
     const fs::path cached = options.cache_folder.empty() ? fs::path{} : options.cache_folder / (stem + ".rec");
     try {
@@ -91,8 +105,26 @@ struct collection_records_options {
     }
     std::lock_guard lock(m);
     ++done;
-    if (options.on_progress) options.on_progress(done, files.size());
+    if (options.on_progress) options.on_progress(done, mine.size());
   });
+  if (share.distributed()) {
+    // Every part learns the others' failures; their records come from the cache folder.
+    std::vector<std::string> failures;
+    for (const auto i : mine)
+      if (!error[i].empty()) failures.insert(failures.end(), {std::to_string(i), error[i]});
+    for (const auto& message : share.all_gather(detail::pack_strings(failures))) {
+      const auto items = detail::unpack_strings(message);
+      for (std::size_t k = 0; k + 1 < items.size(); k += 2) error[std::stoul(items[k])] = items[k + 1];
+    }
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      if (share.owns(i) || !error[i].empty()) continue;
+      try {
+        made[i] = read_shape_record(options.cache_folder / (files[i].stem().string() + ".rec"));
+      } catch (const std::exception& e) {
+        error[i] = std::string("the record made by another process cannot be read: ") + e.what();
+      }
+    }
+  }
   collection_records out;
   std::set<std::string> seen;
   for (std::size_t i = 0; i < files.size(); ++i) {

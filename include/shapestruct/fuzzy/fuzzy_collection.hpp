@@ -24,6 +24,7 @@
 #include "shapestruct/collection/shape_record.hpp"
 #include "shapestruct/core/concepts/shape_aligner.hpp"
 #include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/work_share.hpp"
 #include "shapestruct/detail/disjoint_sets.hpp"
 #include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/fuzzy/alignment_store.hpp"
@@ -49,6 +50,10 @@ struct fuzzy_collection_options {
   index_t ifc_stride = 4;
   int threads = 0;                       ///< 0 = all cores; results do not depend on it
   std::filesystem::path cache_folder{};  ///< pairwise alignments are cached here ("" = not cached)
+  /// Several processes: each aligns its share of every round's pairs and reads the others' from the cache
+  /// folder (required then); the rest (embedding, optimisation, small next to the alignments) runs in every
+  /// process alike, so they all hold the same result, the one a single process computes.
+  work_share share{};
   /// Progress: (stage, done, total). Stages: "align", "embed", "optimize". The library never prints.
   std::function<void(const std::string&, std::size_t, std::size_t)> on_progress{};
 };
@@ -156,7 +161,8 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
   for (const auto& r : records) sample_counts.push_back(r.sample_count());
 
   auto align = [&](const std::vector<key>& pairs) {
-    store.ensure(pairs, aligner, options.threads, [&](std::size_t d, std::size_t t) { progress("align", d, t); });
+    store.ensure(pairs, aligner, options.threads, [&](std::size_t d, std::size_t t) { progress("align", d, t); },
+                 options.share);
   };
   auto embed = [&](fuzzy_iteration& it) {
     const auto t0 = clock::now();

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -13,12 +14,14 @@
 #include <numeric>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "shapestruct/core/work_share.hpp"
 #include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/io/json.hpp"
 #include "shapestruct/io/read_mesh.hpp"
@@ -47,6 +50,9 @@ struct collection_run_options {
   bool write_points = true; ///< per-point labels, correspondences and co-alignments
   int threads = 0;          ///< 0 = all cores (over shapes); every result is independent of it
   std::string summary_name = "summary.json";  ///< distinct names let several processes share one OUT folder
+  /// Several processes on one OUT folder: part 0 learns and writes templates.json, each part labels its own
+  /// shapes, and part 0 writes the summary of all of them; the files are those of a single process.
+  work_share share{};
   /// progress(done, total) after each shape of the labeling pass (called under a lock; may be empty).
   std::function<void(std::size_t, std::size_t)> progress;
   /// problem(file, message) for a shape that could not be processed (skipped, not fatal; may be empty).
@@ -194,51 +200,74 @@ inline collection_run_summary run_template_collection(const std::vector<std::fil
     ++sum.failed;
     if (opt.problem) opt.problem(file, msg);
   };
+  const work_share& share = opt.share;
+  share.validate("run_template_collection");
   const fs::path tpl_file = out_dir / "templates.json";
-  if (fs::exists(tpl_file)) {
-    templates = read_templates(tpl_file.string());  // resume: never re-learn, results must not change
-  } else {
-    if (opt.run_learning || templates.empty()) {
-      // Learning subset: seeded shuffle of the file list, samples held in memory.
-      std::vector<std::size_t> order(files.size());
-      std::iota(order.begin(), order.end(), std::size_t{0});
-      std::mt19937_64 rng(opt.learn.seed);
-      std::shuffle(order.begin(), order.end(), rng);
-      order.resize(std::min(order.size(), opt.learn_subset));
-      std::sort(order.begin(), order.end());
-      if (opt.phase) opt.phase("sampling " + std::to_string(order.size()) + " shapes for learning");
-      std::vector<std::optional<shape_samples>> slots(order.size());
-      detail::parallel_for(order.size(), threads, [&](std::size_t k) {
-        try {
-          const auto mf = read_mesh(files[order[k]]);
-          slots[k] = make_shape_samples(mf.mesh, opt.sampling);
-        } catch (const std::exception&) {
-          // reported in the labeling pass, which reads every file again
+  // With several processes, part 0 learns (or reads templates.json) while the others wait, then they read it.
+  std::exception_ptr learn_failure;
+  std::string learn_error;
+  if (share.leader()) try {
+    if (fs::exists(tpl_file)) {
+      templates = read_templates(tpl_file.string());  // resume: never re-learn, results must not change
+    } else {
+      if (opt.run_learning || templates.empty()) {
+        // Learning subset: seeded shuffle of the file list, samples held in memory.
+        std::vector<std::size_t> order(files.size());
+        std::iota(order.begin(), order.end(), std::size_t{0});
+        std::mt19937_64 rng(opt.learn.seed);
+        std::shuffle(order.begin(), order.end(), rng);
+        order.resize(std::min(order.size(), opt.learn_subset));
+        std::sort(order.begin(), order.end());
+        if (opt.phase) opt.phase("sampling " + std::to_string(order.size()) + " shapes for learning");
+        std::vector<std::optional<shape_samples>> slots(order.size());
+        detail::parallel_for(order.size(), threads, [&](std::size_t k) {
+          try {
+            const auto mf = read_mesh(files[order[k]]);
+            slots[k] = make_shape_samples(mf.mesh, opt.sampling);
+          } catch (const std::exception&) {
+            // reported in the labeling pass, which reads every file again
+          }
+        });
+        std::vector<shape_samples> subset;
+        for (auto& s : slots)
+          if (s) subset.push_back(std::move(*s));
+        if (subset.empty())
+          throw invalid_input(input_error::empty, no_index,
+                              "run_template_collection: no readable shape to learn from in the collection");
+        if (templates.empty()) {
+          if (opt.phase) opt.phase("automatic template initialisation");
+          templates = auto_templates(subset, opt.learn, opt.init);
+        } else if (opt.run_learning) {
+          if (opt.phase) opt.phase("learning templates");
+          templates = learn_templates(templates, subset, opt.learn).templates;
         }
-      });
-      std::vector<shape_samples> subset;
-      for (auto& s : slots)
-        if (s) subset.push_back(std::move(*s));
-      if (subset.empty())
-        throw invalid_input(input_error::empty, no_index,
-                            "run_template_collection: no readable shape to learn from in the collection");
-      if (templates.empty()) {
-        if (opt.phase) opt.phase("automatic template initialisation");
-        templates = auto_templates(subset, opt.learn, opt.init);
-      } else if (opt.run_learning) {
-        if (opt.phase) opt.phase("learning templates");
-        templates = learn_templates(templates, subset, opt.learn).templates;
       }
+      for (const auto& t : templates) validate_template(t, tpl_file.string());
+      write_templates(tpl_file.string(), templates);
     }
-    for (const auto& t : templates) validate_template(t, tpl_file.string());
-    write_templates(tpl_file.string(), templates);
+  } catch (const std::exception& e) {
+    if (!share.distributed()) throw;
+    learn_failure = std::current_exception();
+    learn_error = e.what();
+  }
+  if (share.distributed()) {
+    const auto messages = share.all_gather(learn_error);
+    if (learn_failure) std::rethrow_exception(learn_failure);
+    if (!messages.front().empty())
+      throw std::runtime_error("run_template_collection: learning failed in process 0: " + messages.front());
+    if (!share.leader()) templates = read_templates(tpl_file.string());
   }
   sum.templates = templates;
   std::vector<index_t> cluster(files.size(), no_index);
   std::vector<char> failed(files.size(), 0);
-  if (opt.phase) opt.phase("labeling " + std::to_string(files.size()) + " shapes");
+  std::vector<std::string> failure(files.size());
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < files.size(); ++i)
+    if (share.owns(i)) mine.push_back(i);
+  if (opt.phase) opt.phase("labeling " + std::to_string(mine.size()) + " shapes");
   std::atomic<std::size_t> done{0};
-  detail::parallel_for(files.size(), threads, [&](std::size_t i) {
+  detail::parallel_for(mine.size(), threads, [&](std::size_t j) {
+    const std::size_t i = mine[j];
     const fs::path& file = files[i];
     const std::string stem = file.stem().string();
     const fs::path rec = out_dir / (stem + ".fit.json");
@@ -252,7 +281,7 @@ inline collection_run_summary run_template_collection(const std::vector<std::fil
       std::lock_guard<std::mutex> g(lock);
       ++sum.skipped;
       ++done;
-      if (opt.progress) opt.progress(done, files.size());
+      if (opt.progress) opt.progress(done, mine.size());
       return;
     }
     try {
@@ -319,12 +348,33 @@ inline collection_run_summary run_template_collection(const std::vector<std::fil
       ++sum.processed;
     } catch (const std::exception& e) {
       failed[i] = 1;
+      failure[i] = e.what();
       report(file.string(), e.what());
     }
     std::lock_guard<std::mutex> g(lock);
     ++done;
-    if (opt.progress) opt.progress(done, files.size());
+    if (opt.progress) opt.progress(done, mine.size());
   });
+  if (share.distributed()) {
+    // Every part learns every shape's cluster and failure, and the counts of all parts.
+    std::vector<std::string> items{std::to_string(sum.processed), std::to_string(sum.skipped)};
+    for (const auto i : mine) items.insert(items.end(), {std::to_string(i), std::to_string(cluster[i]), failure[i]});
+    const auto messages = share.all_gather(detail::pack_strings(items));
+    for (std::size_t p = 0; p < messages.size(); ++p) {
+      if (p == share.part) continue;
+      const auto got = detail::unpack_strings(messages[p]);
+      sum.processed += std::stoul(got.at(0));
+      sum.skipped += std::stoul(got.at(1));
+      for (std::size_t k = 2; k + 2 < got.size(); k += 3) {
+        const std::size_t i = std::stoul(got[k]);
+        cluster[i] = static_cast<index_t>(std::stol(got[k + 1]));
+        if (!got[k + 2].empty()) {
+          failed[i] = 1;
+          report(files[i].string(), got[k + 2]);
+        }
+      }
+    }
+  }
   sum.cluster_sizes.assign(templates.size(), 0);
   json_value::array clusters, bad;
   std::vector<json_value::array> members(templates.size());
@@ -342,7 +392,7 @@ inline collection_run_summary run_template_collection(const std::vector<std::fil
                                                      {"members", json_value(std::move(members[t]))}}));
   const json_value summary(json_value::object{{"clusters", json_value(std::move(clusters))},
                                               {"failed", json_value(std::move(bad))}});
-  detail::write_text_atomic(out_dir / opt.summary_name, to_json_string(summary) + "\n");
+  if (share.leader()) detail::write_text_atomic(out_dir / opt.summary_name, to_json_string(summary) + "\n");
   return sum;
 }
 
