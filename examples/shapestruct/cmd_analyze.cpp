@@ -974,7 +974,7 @@ int run_analyze(const analyze_command_line& c) {
 cli::command_fn setup_analyze(CLI::App& app) {
   auto c = std::make_shared<analyze_command_line>();
   app.add_option("DIR", c->input, "the input folder (its .off .obj .ply .stl files)")->required();
-  app.add_option("-o,--output", c->out, "the output folder (required)")->type_name("OUT")->required();
+  app.add_option("-o,--output", c->out, "the output folder")->type_name("OUT")->required();
   app.add_option("--threads", c->threads, "worker threads, 0 = all cores (default); results do not depend on N")
       ->type_name("N")
       ->check(cli::at_least(0LL));

@@ -255,7 +255,7 @@ cli::command_fn setup_fuzzy(CLI::App& app) {
   auto c = std::make_shared<fuzzy_command_line>();
   auto& o = c->options;
   app.add_option("DIR", c->input, "the input folder (its .off .obj .ply .stl files)")->required();
-  app.add_option("-o,--output", c->out, "the output folder (required)")->type_name("OUT")->required();
+  app.add_option("-o,--output", c->out, "the output folder")->type_name("OUT")->required();
   app.add_option("--mode", o.mode,
                  "auto (the default): intrinsic when every shape is a closed genus-0 surface,\n"
                  "else extrinsic; in intrinsic mode a shape that is not is left out and named")
@@ -294,7 +294,7 @@ cli::command_fn setup_fuzzy_map(CLI::App& app) {
   app.add_option("OUT", c->folder, "the output folder of `shapestruct fuzzy`")->required();
   app.add_option("A", c->a, "the source shape (its name in OUT/collection.json, i.e. its file stem)")->required();
   app.add_option("B", c->b, "the target shape")->required();
-  app.add_option("-o,--output", c->out, "the dense vertex map (required)")->type_name("A_B.map")->required();
+  app.add_option("-o,--output", c->out, "the dense vertex map")->type_name("A_B.map")->required();
   app.add_flag("--consistent-blended", c->consistent,
                "(intrinsic collections) the blended map of the pair most consistent\nwith the fuzzy correspondences");
   app.add_option("--threads", c->threads, "worker threads, 0 = all cores (default)")->type_name("N")->check(cli::at_least(0LL));

@@ -215,7 +215,7 @@ cli::command_fn setup_generate(CLI::App& app) {
       ->check(cli::one_of({"creatures", "chairs", "tables", "airplanes", "assemblies"}));
   app.add_option("N", o->count, "number of shapes")->required()->check(cli::at_least(1LL));
   app.add_option("-o,--output", o->out_dir,
-                 "output folder; created if missing; a non-empty DIR is refused unless\n--force (required)")
+                 "output folder; created if missing; a non-empty DIR is refused unless --force")
       ->type_name("DIR")
       ->required();
   app.add_option("--seed", o->seed, "collection seed (default 0)")->type_name("S")->check(cli::at_least(0LL));

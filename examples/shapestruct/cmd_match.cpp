@@ -133,7 +133,7 @@ command_fn setup_match(CLI::App& app) {
   auto m = std::make_shared<match_options>();
   app.add_option("SRC", m->src, "source mesh")->required();
   app.add_option("TGT", m->tgt, "target mesh")->required();
-  app.add_option("-o,--output", m->out, "the dense vertex map (required)")->type_name("OUT.map")->required();
+  app.add_option("-o,--output", m->out, "the dense vertex map")->type_name("OUT.map")->required();
   app.add_option("--precise", m->precise, "per SRC vertex: target face and barycentric weights, 'face b0 b1 b2'")
       ->type_name("OUT.txt");
   app.add_option("--candidates", m->candidates,

@@ -111,7 +111,7 @@ cli::command_fn setup_templates(CLI::App& app) {
   auto c = std::make_shared<templates_command_line>();
   auto& o = c->options;
   app.add_option("DIR", c->input, "the input folder (its .off .obj .ply .stl files)")->required();
-  app.add_option("-o,--output", c->out, "the output folder (required)")->type_name("OUT")->required();
+  app.add_option("-o,--output", c->out, "the output folder")->type_name("OUT")->required();
   app.add_option("--template,-t", o.template_file,
                  "initial template(s) (hand-authored or from an earlier run); default: automatic")
       ->type_name("T.json");
