@@ -3,7 +3,8 @@
 # which. Needs root (or sudo). Usage: scripts/install_deps.sh [--with-optional]
 set -euo pipefail
 required=(g++ cmake make libeigen3-dev libspectra-dev libnanoflann-dev libboost-graph-dev doctest-dev
-          libbenchmark-dev gnuplot-nox pkg-config libcpp-httplib-dev nlohmann-json3-dev libpng-dev)
+          libbenchmark-dev gnuplot-nox pkg-config libcpp-httplib-dev nlohmann-json3-dev libpng-dev
+          libcli11-dev)
 # Optional: adapters and examples that are compiled and tested only when these are present.
 optional=(libopenmesh-dev libcgal-dev libopenmpi-dev openmpi-bin clang libclang-rt-14-dev chromium)
 wanted=("${required[@]}")

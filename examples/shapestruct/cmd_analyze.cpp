@@ -13,6 +13,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -25,6 +26,7 @@
 
 #include "command.hpp"
 #include "fuzzy_run.hpp"
+#include "option_checks.hpp"
 #include "process_group.hpp"
 #include "progress_display.hpp"
 #include "report_fuzzy.hpp"
@@ -841,26 +843,27 @@ struct timings_file {
   }
 };
 
-int run_analyze(const std::vector<std::string>& args) {
-  cli::arg_reader reader(args);
+/// The command line of `shapestruct analyze`.
+struct analyze_command_line {
+  std::string input, out, truth, mode = "auto", template_file;
+  long long threads = 0;
+  long long learn_subset = 200;
+  bool quiet = false;
+};
+
+int run_analyze(const analyze_command_line& c) {
   analyze_settings s;
-  s.out = reader.option({"-o", "--output"});
-  s.threads = reader.integer({"--threads"}, 0);
-  s.mode = reader.option({"--mode"}, "auto");
-  const std::string truth = reader.option({"--truth"});
+  s.out = c.out;
+  s.threads = c.threads;
+  s.mode = c.mode;
+  const std::string& truth = c.truth;
   cli::templates_cli_options topt;
-  topt.template_file = reader.option({"--template", "-t"});
-  topt.learn_subset = reader.integer({"--learn-subset"}, 200);
-  s.quiet = reader.flag("--quiet");
+  topt.template_file = c.template_file;
+  topt.learn_subset = c.learn_subset;
+  s.quiet = c.quiet;
+  s.input = c.input;
   s.share = cli::run_share();
   s.quiet = s.quiet || !s.share.leader();  // one progress display: rank 0's
-  const auto pos = reader.positionals();
-  if (pos.size() != 1) throw cli::usage_error("expected one input folder DIR");
-  if (s.out.empty()) throw cli::usage_error("-o OUT is required");
-  if (s.mode != "auto" && s.mode != "extrinsic" && s.mode != "intrinsic")
-    throw cli::usage_error("--mode must be auto, intrinsic or extrinsic, got '" + s.mode + "'");
-  if (s.threads < 0) throw cli::usage_error("--threads must be >= 0");
-  s.input = pos[0];
   s.truth_given = !truth.empty();
   s.truth = s.truth_given ? fs::path(truth) : s.input;
   if (s.truth_given && !fs::is_directory(s.truth)) throw cli::usage_error("--truth " + truth + " is not a folder");
@@ -872,10 +875,8 @@ int run_analyze(const std::vector<std::string>& args) {
   fopt.quiet = s.quiet;
   fopt.timings_in_results = false;
   fopt.share = s.share;
-  cli::check_templates_options(topt);
-  cli::check_fuzzy_options(fopt);
   const auto all_files = cli::shape_files_in(s.input);
-  if (all_files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + pos[0]);
+  if (all_files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + c.input);
   fs::create_directories(s.out);
   // Temporaries of writes cut short by an interruption (never listed, never read): cleared before any rank writes.
   if (s.share.leader())
@@ -928,7 +929,7 @@ int run_analyze(const std::vector<std::string>& args) {
     if (checks[i].usable) usable.push_back(all_files[i]);
     else if (leader) std::fprintf(stderr, "analyze: skipped %s: %s\n", checks[i].file.c_str(), checks[i].reason.c_str());
   if (usable.empty()) {
-    if (leader) std::fprintf(stderr, "analyze: no usable shape in %s\n", pos[0].c_str());
+    if (leader) std::fprintf(stderr, "analyze: no usable shape in %s\n", c.input.c_str());
     return 1;
   }
 
@@ -970,7 +971,7 @@ int run_analyze(const std::vector<std::string>& args) {
     const auto [mode, why] = mode_and_reason(s, checks);
     say("fuzzy: " + (s.mode == "auto" ? std::string("expecting ") + mode + " mode: " : std::string()) + why);
     cli::progress_line bar(s.quiet, "fuzzy/");
-    const auto r = cli::run_fuzzy_folder(usable, s.out / "fuzzy", fopt, bar, pos[0]);
+    const auto r = cli::run_fuzzy_folder(usable, s.out / "fuzzy", fopt, bar, c.input);
     if (r.exit_code != 0) return std::string("failed: fewer than two usable shapes, no correspondences");
     return r.mode + " mode, " + std::to_string(r.shapes) + " shapes";
   });
@@ -1033,33 +1034,47 @@ int run_analyze(const std::vector<std::string>& args) {
   return 0;
 }
 
+cli::command_fn setup_analyze(CLI::App& app) {
+  auto c = std::make_shared<analyze_command_line>();
+  app.add_option("DIR", c->input, "the input folder (its .off .obj .ply .stl files)")->required();
+  app.add_option("-o,--output", c->out, "the output folder")->type_name("OUT")->required();
+  app.add_option("--threads", c->threads, "worker threads, 0 = all cores (default); results do not depend on N")
+      ->type_name("N")
+      ->check(cli::at_least(0LL));
+  app.add_option("--mode", c->mode,
+                 "fuzzy correspondences: auto (default: intrinsic when every shape is a\n"
+                 "closed genus-0 manifold, else extrinsic), intrinsic or extrinsic")
+      ->type_name("auto|intrinsic|extrinsic")
+      ->check(cli::one_of({"auto", "intrinsic", "extrinsic"}));
+  app.add_option("--truth", c->truth, "ground-truth labels STEM.seg (one 0-based label per face) in DIR")->type_name("DIR");
+  app.add_option("--template,-t", c->template_file,
+                 "passed to the templates stage (`shapestruct templates --help`): initial\n"
+                 "templates instead of the automatic ones")
+      ->type_name("T.json");
+  app.add_option("--learn-subset", c->learn_subset,
+                 "passed to the templates stage: shapes to learn from (default 200)")
+      ->type_name("S")
+      ->check(cli::at_least(1LL));
+  app.add_flag("--quiet", c->quiet, "no progress display");
+  app.footer(
+      "Runs five stages on every shape file in DIR (.off .obj .ply .stl), each into its own folder of OUT:\n"
+      "  inspect/    check_mesh's report per shape file (FILE.json) and summary.json; an unreadable, empty or\n"
+      "              non-finite shape is reported and skipped by the later stages\n"
+      "  templates/  exactly what `shapestruct templates` writes (learned templates, STEM.seg, co-alignment)\n"
+      "  evaluate/   with ground truth (the generator's STEM.seg beside the shapes, or --truth DIR):\n"
+      "              accuracy.json, the part-labeling accuracy of the templates (also printed)\n"
+      "  fuzzy/      what `shapestruct fuzzy` writes (its timings go to OUT/timings.json instead)\n"
+      "  report/     index.html: opens from disk without a server; PNG thumbnails rendered by the tool\n"
+      "and OUT/manifest.json (every file and what it is, stages, mode, skipped shapes, accuracy) and\n"
+      "OUT/timings.json (seconds per stage). Each stage ends by writing OUT/STAGE/.done: run the same command\n"
+      "again after an interruption and finished stages (and finished shapes and pairs) are not redone; the\n"
+      "result files are the same as those of an uninterrupted run. See docs/analyze.md.");
+  return [c] { return run_analyze(*c); };
+}
+
 const cli::register_command reg{
     "analyze",
     {"the structure of a folder of shapes in one command: check, templates, accuracy, fuzzy correspondences, report",
-     "usage: shapestruct analyze DIR -o OUT [--threads N] [--mode auto|intrinsic|extrinsic] [--truth DIR]\n"
-     "                           [--template T.json] [--learn-subset S] [--quiet]\n"
-     "\n"
-     "Runs five stages on every shape file in DIR (.off .obj .ply .stl), each into its own folder of OUT:\n"
-     "  inspect/    check_mesh's report per shape file (FILE.json) and summary.json; an unreadable, empty or\n"
-     "              non-finite shape is reported and skipped by the later stages\n"
-     "  templates/  exactly what `shapestruct templates` writes (learned templates, STEM.seg, co-alignment)\n"
-     "  evaluate/   with ground truth (the generator's STEM.seg beside the shapes, or --truth DIR):\n"
-     "              accuracy.json, the part-labeling accuracy of the templates (also printed)\n"
-     "  fuzzy/      what `shapestruct fuzzy` writes (its timings go to OUT/timings.json instead)\n"
-     "  report/     index.html: opens from disk without a server; PNG thumbnails rendered by the tool\n"
-     "and OUT/manifest.json (every file and what it is, stages, mode, skipped shapes, accuracy) and\n"
-     "OUT/timings.json (seconds per stage). Each stage ends by writing OUT/STAGE/.done: run the same command\n"
-     "again after an interruption and finished stages (and finished shapes and pairs) are not redone; the\n"
-     "result files are the same as those of an uninterrupted run. See docs/analyze.md.\n"
-     "\n"
-     "options:\n"
-     "  --threads N   worker threads, 0 = all cores (default); results do not depend on N\n"
-     "  --mode M      fuzzy correspondences: auto (default: intrinsic when every shape is a closed genus-0\n"
-     "                manifold, else extrinsic), intrinsic or extrinsic\n"
-     "  --truth DIR   ground-truth labels STEM.seg (one 0-based label per face) in DIR\n"
-     "  --template T.json, --learn-subset S   passed to the templates stage (`shapestruct templates --help`):\n"
-     "                initial templates instead of the automatic ones; shapes to learn from (default 200)\n"
-     "  --quiet       no progress display",
-     run_analyze}};
+     setup_analyze}};
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <list>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -18,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "option_checks.hpp"
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/explore/collection_explorer.hpp"
 #include "shapestruct/fuzzy/fuzzy_output.hpp"
@@ -37,20 +39,6 @@ namespace {
 using namespace shapestruct;
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-
-const char* explore_usage =
-    "usage: shapestruct explore OUT [--port P] [--templates DIR] [--page-size N] [--threads N] [--page-dir DIR]\n"
-    "\n"
-    "Serves the collection explorer for OUT, the output folder of `shapestruct fuzzy`, at http://127.0.0.1:P/\n"
-    "(loopback only): paint a region of interest on example shapes, sort the collection by similarity to it,\n"
-    "see where the collection varies, align every shape to a canonical view or to the region (docs/explore.md).\n"
-    "Nothing is written into OUT.\n"
-    "  --port P         port (default 8765; 0 picks a free one); the line 'explore: serving URL' says which\n"
-    "  --templates DIR  output of `shapestruct templates` on the same shapes: part labels and template clusters\n"
-    "  --page-size N    shapes per results page (default 24)\n"
-    "  --threads N      threads for queries (default 0 = all cores)\n"
-    "  --page-dir DIR   the page's files (default: the folder bundled at build time, or share/shapestruct/explore\n"
-    "                   beside the installed tool)\n";
 
 /// A 4xx answer: the request was wrong; the message says how.
 struct request_error {
@@ -319,23 +307,27 @@ index_t shape_index(const httplib::Request& req) {
   }
 }
 
-int run_explore(const std::vector<std::string>& args) {
-  cli::arg_reader reader(args);
-  const long long port = reader.integer({"--port"}, 8765);
-  const std::string templates_dir = reader.option({"--templates"});
-  const long long page_size = reader.integer({"--page-size"}, 24);
-  const long long threads = reader.integer({"--threads"}, 0);
-  const std::string page_option = reader.option({"--page-dir"});
-  const auto pos = reader.positionals();
-  if (pos.size() != 1) throw cli::usage_error("expected one folder OUT (the output of `shapestruct fuzzy`)");
-  if (port < 0 || port > 65535) throw cli::usage_error("--port must be in 0..65535");
-  if (page_size < 1) throw cli::usage_error("--page-size must be >= 1");
-  if (threads < 0) throw cli::usage_error("--threads must be >= 0");
+/// The command line of `shapestruct explore`.
+struct explore_options {
+  std::string folder;
+  long long port = 8765;
+  std::string templates_dir;
+  long long page_size = 24;
+  long long threads = 0;
+  std::string page_dir;
+};
+
+int run_explore(const explore_options& o) {
+  const long long port = o.port;
+  const std::string& templates_dir = o.templates_dir;
+  const long long page_size = o.page_size;
+  const long long threads = o.threads;
+  const std::string& page_option = o.page_dir;
 
   const auto t0 = std::chrono::steady_clock::now();
   const fs::path exe_dir = fs::canonical("/proc/self/exe").parent_path();
   const fs::path page_dir = find_page_dir(page_option, exe_dir.c_str());
-  explore_service service(read_fuzzy_output(pos[0]), read_template_output(templates_dir), int(threads), int(page_size));
+  explore_service service(read_fuzzy_output(o.folder), read_template_output(templates_dir), int(threads), int(page_size));
   (void)service.explorer().canonical_reference();  // the first requests should not wait for it
   std::fprintf(stderr, "explore: %ld shapes loaded, canonical view computed in %.2f s\n",
                long(service.explorer().shapes()),
@@ -391,6 +383,29 @@ int run_explore(const std::vector<std::string>& args) {
   return 0;
 }
 
-const cli::register_command reg_explore{"explore", {"serve the region-of-interest explorer of a fuzzy collection", explore_usage, run_explore}};
+cli::command_fn setup_explore(CLI::App& app) {
+  auto o = std::make_shared<explore_options>();
+  app.add_option("OUT", o->folder, "the output folder of `shapestruct fuzzy`")->required();
+  app.add_option("--port", o->port, "port (default 8765; 0 picks a free one); the line 'explore: serving URL'\nsays which")
+      ->type_name("P")
+      ->check(cli::in_range(0LL, 65535LL));
+  app.add_option("--templates", o->templates_dir,
+                 "output of `shapestruct templates` on the same shapes: part labels and\ntemplate clusters")
+      ->type_name("DIR");
+  app.add_option("--page-size", o->page_size, "shapes per results page (default 24)")->type_name("N")->check(cli::at_least(1LL));
+  app.add_option("--threads", o->threads, "threads for queries (default 0 = all cores)")->type_name("N")->check(cli::at_least(0LL));
+  app.add_option("--page-dir", o->page_dir,
+                 "the page's files (default: the folder bundled at build time, or\nshare/shapestruct/explore beside the "
+                 "installed tool)")
+      ->type_name("DIR");
+  app.footer(
+      "Serves the collection explorer for OUT, the output folder of `shapestruct fuzzy`, at http://127.0.0.1:P/\n"
+      "(loopback only): paint a region of interest on example shapes, sort the collection by similarity to it,\n"
+      "see where the collection varies, align every shape to a canonical view or to the region (docs/explore.md).\n"
+      "Nothing is written into OUT.");
+  return [o] { return run_explore(*o); };
+}
+
+const cli::register_command reg_explore{"explore", {"serve the region-of-interest explorer of a fuzzy collection", setup_explore}};
 
 }  // namespace

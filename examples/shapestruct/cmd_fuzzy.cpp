@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 
 #include "command.hpp"
 #include "fuzzy_run.hpp"
+#include "option_checks.hpp"
 #include "shapestruct/fuzzy/collection_records.hpp"
 #include "shapestruct/fuzzy/extrinsic_alignment.hpp"
 #include "shapestruct/fuzzy/fuzzy_collection.hpp"
@@ -32,61 +34,36 @@ using namespace shapestruct;
 namespace fs = std::filesystem;
 using steady = std::chrono::steady_clock;
 
-const char* fuzzy_usage =
-    "usage: shapestruct fuzzy DIR -o OUT [--mode extrinsic|intrinsic|auto] [--samples K] [--threads N]\n"
-    "                         [--edges-per-shape M] [--up 0|1|2] [--diffusion-time T] [--dimensions D] [--quiet]\n"
-    "Fuzzy correspondences of every shape file (.off .obj .ply .stl) in DIR (chapter 4): K farthest-point samples\n"
-    "per shape, an initial alignment graph from spherical-harmonic descriptors, pairwise alignments along its\n"
-    "edges (extrinsic: upright ICP; intrinsic: blended intrinsic maps), the diffusion embedding of the\n"
-    "correspondence matrix (time T = 10, D = 64 dimensions) and the graph optimisation of Algorithm 1.\n"
-    "--mode auto (the default) is intrinsic when every shape is a closed genus-0 surface, else extrinsic; in\n"
-    "intrinsic mode a shape that is not is left out and named. OUT holds (docs/fuzzy.md): collection.json, samples.txt,\n"
-    "graph.txt, iterations.tsv, fuzzy.bin, and the resume caches records/ and pairs/: run the same command again\n"
-    "after an interruption and finished work is not redone. Unreadable, empty or non-finite shapes are reported\n"
-    "and skipped.\n";
-
-const char* fuzzy_map_usage =
-    "usage: shapestruct fuzzy-map OUT A B -o A_B.map [--consistent-blended] [--threads N]\n"
-    "Dense vertex map from shape A to shape B (names as in OUT/collection.json, i.e. file stems) of a collection\n"
-    "computed by `shapestruct fuzzy`: by default the best fuzzy correspondence (each vertex goes where its nearest\n"
-    "sample's closest sample in the embedding lies); --consistent-blended (intrinsic collections) the blended map\n"
-    "of the pair most consistent with the fuzzy correspondences. One 0-based target vertex id per line.\n";
-
 using cli::progress_line;
 
 double since(steady::time_point t) { return std::chrono::duration<double>(steady::now() - t).count(); }
 
-int run_fuzzy(const std::vector<std::string>& args) {
-  cli::arg_reader reader(args);
-  const std::string out = reader.option({"-o", "--output"});
-  cli::fuzzy_cli_options o;
-  o.mode = reader.option({"--mode"}, "auto");
-  o.samples = reader.integer({"--samples"}, 128);
-  o.threads = reader.integer({"--threads"}, 0);
-  o.edges_per_shape = reader.integer({"--edges-per-shape"}, 5);
-  o.up = reader.integer({"--up"}, 1);
-  o.diffusion_time = reader.real({"--diffusion-time"}, 10.0);
-  o.dimensions = reader.integer({"--dimensions"}, 64);
-  o.quiet = reader.flag("--quiet");
-  const auto pos = reader.positionals();
-  if (pos.size() != 1) throw cli::usage_error("expected one input folder DIR");
-  if (out.empty()) throw cli::usage_error("-o OUT is required");
-  cli::check_fuzzy_options(o);
-  const auto files = list_shape_files(pos[0]);
-  if (files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + pos[0]);
+/// The command line of `shapestruct fuzzy`.
+struct fuzzy_command_line {
+  std::string input, out;
+  cli::fuzzy_cli_options options;
+};
+
+int run_fuzzy(const fuzzy_command_line& c) {
+  const std::string& out = c.out;
+  const cli::fuzzy_cli_options& o = c.options;
+  const auto files = list_shape_files(c.input);
+  if (files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + c.input);
   progress_line bar(o.quiet);
-  return cli::run_fuzzy_folder(files, out, o, bar, pos[0]).exit_code;
+  return cli::run_fuzzy_folder(files, out, o, bar, c.input).exit_code;
 }
 
-int run_fuzzy_map(const std::vector<std::string>& args) {
-  cli::arg_reader reader(args);
-  const std::string out = reader.option({"-o", "--output"});
-  const bool consistent = reader.flag("--consistent-blended");
-  const long long threads = reader.integer({"--threads"}, 0);
-  const auto pos = reader.positionals();
-  if (pos.size() != 3) throw cli::usage_error("expected OUT A B");
-  if (out.empty()) throw cli::usage_error("-o A_B.map is required");
-  if (threads < 0) throw cli::usage_error("--threads must be >= 0");
+/// The command line of `shapestruct fuzzy-map`.
+struct fuzzy_map_command_line {
+  std::string folder, a, b, out;
+  bool consistent = false;
+  long long threads = 0;
+};
+
+int run_fuzzy_map(const fuzzy_map_command_line& c) {
+  const std::string& out = c.out;
+  const bool consistent = c.consistent;
+  const std::vector<std::string> pos{c.folder, c.a, c.b};
   const fs::path dir(pos[0]);
   for (const char* needed : {"collection.json", "fuzzy.bin"})
     if (!fs::exists(dir / needed))
@@ -122,15 +99,6 @@ int run_fuzzy_map(const std::vector<std::string>& args) {
 }  // namespace
 
 namespace shapestruct::cli {
-
-void check_fuzzy_options(const fuzzy_cli_options& o) {
-  if (o.mode != "auto" && o.mode != "extrinsic" && o.mode != "intrinsic")
-    throw cli::usage_error("--mode must be extrinsic, intrinsic or auto, got '" + o.mode + "'");
-  if (o.samples < 3 || o.threads < 0 || o.edges_per_shape < 1 || o.up < 0 || o.up > 2 || !(o.diffusion_time >= 0) ||
-      o.dimensions < 1)
-    throw cli::usage_error(
-        "--samples >= 3, --threads >= 0, --edges-per-shape >= 1, --up 0|1|2, --diffusion-time >= 0, --dimensions >= 1");
-}
 
 fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& files, const std::filesystem::path& out,
                                   const fuzzy_cli_options& o, progress_line& bar, const std::string& input_name) {
@@ -290,7 +258,62 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
 
 namespace {
 
-const cli::register_command reg_fuzzy{"fuzzy", {"fuzzy correspondences of a folder of shapes (chapter 4)", fuzzy_usage, run_fuzzy}};
-const cli::register_command reg_fuzzy_map{"fuzzy-map", {"a dense .map between two shapes of a fuzzy collection", fuzzy_map_usage, run_fuzzy_map}};
+cli::command_fn setup_fuzzy(CLI::App& app) {
+  auto c = std::make_shared<fuzzy_command_line>();
+  auto& o = c->options;
+  app.add_option("DIR", c->input, "the input folder (its .off .obj .ply .stl files)")->required();
+  app.add_option("-o,--output", c->out, "the output folder")->type_name("OUT")->required();
+  app.add_option("--mode", o.mode,
+                 "auto (the default): intrinsic when every shape is a closed genus-0 surface,\n"
+                 "else extrinsic; in intrinsic mode a shape that is not is left out and named")
+      ->type_name("extrinsic|intrinsic|auto")
+      ->check(cli::one_of({"extrinsic", "intrinsic", "auto"}));
+  app.add_option("--samples", o.samples, "farthest-point samples per shape (default 128)")
+      ->type_name("K")
+      ->check(cli::at_least(3LL));
+  app.add_option("--threads", o.threads, "worker threads, 0 = all cores (default)")->type_name("N")->check(cli::at_least(0LL));
+  app.add_option("--edges-per-shape", o.edges_per_shape, "edges per shape of the initial alignment graph (default 5)")
+      ->type_name("M")
+      ->check(cli::at_least(1LL));
+  app.add_option("--up", o.up, "up axis of the collection (extrinsic mode): 0 x, 1 y (default), 2 z")
+      ->type_name("0|1|2")
+      ->check(cli::in_range(0LL, 2LL));
+  app.add_option("--diffusion-time", o.diffusion_time, "time of the diffusion embedding (default 10)")
+      ->type_name("T")
+      ->check(cli::at_least(0.0));
+  app.add_option("--dimensions", o.dimensions, "dimensions of the diffusion embedding (default 64)")
+      ->type_name("D")
+      ->check(cli::at_least(1LL));
+  app.add_flag("--quiet", o.quiet, "no progress display");
+  app.footer(
+      "Fuzzy correspondences of every shape file (.off .obj .ply .stl) in DIR (chapter 4): K farthest-point samples\n"
+      "per shape, an initial alignment graph from spherical-harmonic descriptors, pairwise alignments along its\n"
+      "edges (extrinsic: upright ICP; intrinsic: blended intrinsic maps), the diffusion embedding of the\n"
+      "correspondence matrix (time T = 10, D = 64 dimensions) and the graph optimisation of Algorithm 1.\n"
+      "OUT holds (docs/fuzzy.md): collection.json, samples.txt, graph.txt, iterations.tsv, fuzzy.bin, and the\n"
+      "resume caches records/ and pairs/: run the same command again after an interruption and finished work is\n"
+      "not redone. Unreadable, empty or non-finite shapes are reported and skipped.");
+  return [c] { return run_fuzzy(*c); };
+}
+
+cli::command_fn setup_fuzzy_map(CLI::App& app) {
+  auto c = std::make_shared<fuzzy_map_command_line>();
+  app.add_option("OUT", c->folder, "the output folder of `shapestruct fuzzy`")->required();
+  app.add_option("A", c->a, "the source shape (its name in OUT/collection.json, i.e. its file stem)")->required();
+  app.add_option("B", c->b, "the target shape")->required();
+  app.add_option("-o,--output", c->out, "the dense vertex map")->type_name("A_B.map")->required();
+  app.add_flag("--consistent-blended", c->consistent,
+               "(intrinsic collections) the blended map of the pair most consistent\nwith the fuzzy correspondences");
+  app.add_option("--threads", c->threads, "worker threads, 0 = all cores (default)")->type_name("N")->check(cli::at_least(0LL));
+  app.footer(
+      "Dense vertex map from shape A to shape B of a collection computed by `shapestruct fuzzy`: by default the\n"
+      "best fuzzy correspondence (each vertex goes where its nearest sample's closest sample in the embedding\n"
+      "lies); --consistent-blended the blended map of the pair most consistent with the fuzzy correspondences.\n"
+      "One 0-based target vertex id per line.");
+  return [c] { return run_fuzzy_map(*c); };
+}
+
+const cli::register_command reg_fuzzy{"fuzzy", {"fuzzy correspondences of a folder of shapes (chapter 4)", setup_fuzzy}};
+const cli::register_command reg_fuzzy_map{"fuzzy-map", {"a dense .map between two shapes of a fuzzy collection", setup_fuzzy_map}};
 
 }  // namespace

@@ -5,11 +5,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "command.hpp"
+#include "option_checks.hpp"
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/generate/assembly_generator.hpp"
 #include "shapestruct/generate/creature_generator.hpp"
@@ -79,36 +81,32 @@ json_value names_json(std::span<const char* const> names) {
   return a;
 }
 
-int run_generate(const std::vector<std::string>& args) {
-  cli::arg_reader reader(args);
-  const bool force = reader.flag("--force");
-  const std::string out_dir = reader.option({"-o", "--output"});
-  const long long seed = reader.integer({"--seed"}, 0);
-  const long long first = reader.integer({"--first"}, 0);
-  const long long threads = reader.integer({"--threads"}, 0);
-  const std::string format = reader.option({"--format"}, "off");
-  const auto pos = reader.positionals();
-  if (pos.size() != 2) throw cli::usage_error("expected KIND and N");
-  const std::string kind = pos[0];
+/// The command line of `shapestruct generate`.
+struct generate_options {
+  std::string kind;
   long long count = 0;
-  try {
-    std::size_t used = 0;
-    count = std::stoll(pos[1], &used);
-    if (used != pos[1].size()) throw std::invalid_argument(pos[1]);
-  } catch (const std::exception&) {
-    throw cli::usage_error("N must be an integer, got '" + pos[1] + "'");
-  }
-  if (count < 1) throw cli::usage_error("N must be at least 1");
-  if (seed < 0 || first < 0 || threads < 0) throw cli::usage_error("--seed, --first and --threads must be >= 0");
-  if (out_dir.empty()) throw cli::usage_error("-o DIR is required");
-  if (format != "off" && format != "obj" && format != "ply") throw cli::usage_error("--format must be off, obj or ply");
+  std::string out_dir;
+  long long seed = 0;
+  long long first = 0;
+  std::string format = "off";
+  long long threads = 0;
+  bool force = false;
+};
+
+int run_generate(const generate_options& o) {
+  const bool force = o.force;
+  const std::string& out_dir = o.out_dir;
+  const long long seed = o.seed;
+  const long long first = o.first;
+  const long long threads = o.threads;
+  const std::string& format = o.format;
+  const std::string& kind = o.kind;
+  const long long count = o.count;
   std::optional<assembly_kind> akind;
   const bool creatures = kind == "creatures";
   if (kind == "chairs") akind = assembly_kind::chair;
   else if (kind == "tables") akind = assembly_kind::table;
   else if (kind == "airplanes") akind = assembly_kind::airplane;
-  else if (!creatures && kind != "assemblies")
-    throw cli::usage_error("KIND must be creatures, chairs, tables, airplanes or assemblies");
 
   // Never clobber what a user has: a non-empty folder needs --force (and then only our file names are
   // replaced; nothing else in it is touched).
@@ -210,31 +208,42 @@ int run_generate(const std::vector<std::string>& args) {
   return 0;
 }
 
+cli::command_fn setup_generate(CLI::App& app) {
+  auto o = std::make_shared<generate_options>();
+  app.add_option("KIND", o->kind, "creatures | chairs | tables | airplanes | assemblies (a mix of the three\nassembly classes)")
+      ->required()
+      ->check(cli::one_of({"creatures", "chairs", "tables", "airplanes", "assemblies"}));
+  app.add_option("N", o->count, "number of shapes")->required()->check(cli::at_least(1LL));
+  app.add_option("-o,--output", o->out_dir,
+                 "output folder; created if missing; a non-empty DIR is refused unless --force")
+      ->type_name("DIR")
+      ->required();
+  app.add_option("--seed", o->seed, "collection seed (default 0)")->type_name("S")->check(cli::at_least(0LL));
+  app.add_option("--first", o->first, "index of the first shape (default 0)")->type_name("I")->check(cli::at_least(0LL));
+  app.add_option("--format", o->format, "mesh format: off (default), obj or ply")
+      ->type_name("off|obj|ply")
+      ->check(cli::one_of({"off", "obj", "ply"}));
+  app.add_option("--threads", o->threads, "generation threads, 0 = all cores (default); output is identical\nfor any T")
+      ->type_name("T")
+      ->check(cli::at_least(0LL));
+  app.add_flag("--force", o->force, "write into a non-empty DIR (replaces files of the same names only)");
+  app.footer(
+      "Writes shapes I .. I+N-1 (default I = 0) of the collection (KIND, S); shape i depends only on\n"
+      "(KIND, S, i), so any subset can be regenerated. Per shape STEM (e.g. creature_000007, chair_000003):\n"
+      "  STEM.off|obj|ply  the mesh (assemblies: a polygon soup of separate parts)\n"
+      "  STEM.seg          one 0-based part label per face per line (names in collection.json)\n"
+      "  STEM.pts          landmarks, one 'name x y z' per line (each is a mesh vertex)\n"
+      "  STEM.corr         creatures: per vertex 'patch u v', its point in the common domain; the same line\n"
+      "                    on canonical.corr / canonical.off (written once) or any creature is the same place\n"
+      "  STEM.sym          creatures: per vertex 'w f b0 b1 b2': w the vertex nearest its left-right mirror\n"
+      "                    image, (f, b) the exact mirror point as face and barycentric weights\n"
+      "  collection.json   kind, seed, count, label names, conventions (+y up, -z front) and the file list\n"
+      "See docs/synthetic_collections.md.");
+  return [o] { return run_generate(*o); };
+}
+
 const cli::register_command reg{
     "generate",
-    {"write a synthetic collection (creatures, chairs, tables, airplanes) with exact ground truth",
-     "usage: shapestruct generate KIND N -o DIR [--seed S] [--first I] [--format off|obj|ply] [--threads T]\n"
-     "                            [--force]\n"
-     "\n"
-     "KIND: creatures | chairs | tables | airplanes | assemblies (a mix of the three assembly classes).\n"
-     "Writes shapes I .. I+N-1 (default I = 0) of the collection (KIND, S); shape i depends only on\n"
-     "(KIND, S, i), so any subset can be regenerated. Per shape STEM (e.g. creature_000007, chair_000003):\n"
-     "  STEM.off|obj|ply  the mesh (assemblies: a polygon soup of separate parts)\n"
-     "  STEM.seg          one 0-based part label per face per line (names in collection.json)\n"
-     "  STEM.pts          landmarks, one 'name x y z' per line (each is a mesh vertex)\n"
-     "  STEM.corr         creatures: per vertex 'patch u v', its point in the common domain; the same line\n"
-     "                    on canonical.corr / canonical.off (written once) or any creature is the same place\n"
-     "  STEM.sym          creatures: per vertex 'w f b0 b1 b2': w the vertex nearest its left-right mirror\n"
-     "                    image, (f, b) the exact mirror point as face and barycentric weights\n"
-     "  collection.json   kind, seed, count, label names, conventions (+y up, -z front) and the file list\n"
-     "See docs/synthetic_collections.md.\n"
-     "\n"
-     "  -o DIR        output folder; created if missing; a non-empty DIR is refused unless --force\n"
-     "  --seed S      collection seed (default 0)\n"
-     "  --first I     index of the first shape (default 0)\n"
-     "  --format F    mesh format: off (default), obj or ply\n"
-     "  --threads T   generation threads, 0 = all cores (default); output is identical for any T\n"
-     "  --force       write into a non-empty DIR (replaces files of the same names only)",
-     run_generate}};
+    {"write a synthetic collection (creatures, chairs, tables, airplanes) with exact ground truth", setup_generate}};
 
 }  // namespace

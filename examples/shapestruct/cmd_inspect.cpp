@@ -4,10 +4,12 @@
 #include <cctype>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "command.hpp"
+#include "option_checks.hpp"
 #include "shapestruct/core/check_mesh.hpp"
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/io/read_mesh.hpp"
@@ -62,14 +64,17 @@ std::vector<fs::path> expand_arguments(const std::vector<std::string>& args) {
   return files;
 }
 
-int run_inspect(const std::vector<std::string>& raw) {
-  cli::arg_reader args(raw);
-  const bool json = args.flag("--json");
-  const long long max_examples = args.integer({"--max-examples"}, 10);
-  if (max_examples < 0) throw cli::usage_error("--max-examples must be >= 0");
-  const auto positional = args.positionals();
-  if (positional.empty()) throw cli::usage_error("no FILE given");
-  const std::vector<fs::path> files = expand_arguments(positional);
+/// The command line of `shapestruct inspect`.
+struct inspect_options {
+  std::vector<std::string> inputs;  ///< FILE|DIR...
+  bool json = false;
+  long long max_examples = 10;
+};
+
+int run_inspect(const inspect_options& o) {
+  const bool json = o.json;
+  const long long max_examples = o.max_examples;
+  const std::vector<fs::path> files = expand_arguments(o.inputs);
   if (files.empty()) throw cli::usage_error("no mesh file (.off .obj .ply .stl) in the given folders");
 
   const check_mesh_options options{.max_examples = static_cast<index_t>(max_examples)};
@@ -111,22 +116,27 @@ int run_inspect(const std::vector<std::string>& raw) {
   return failures == 0 ? 0 : 1;
 }
 
+cli::command_fn setup_inspect(CLI::App& app) {
+  auto o = std::make_shared<inspect_options>();
+  app.add_option("FILE|DIR", o->inputs, "mesh files; a DIR stands for every .off .obj .ply .stl file below it, sorted")
+      ->required();
+  app.add_flag("--json", o->json, "one JSON array, an object {file, ok, report | error} per file");
+  app.add_option("--max-examples", o->max_examples, "offending elements listed per problem (default 10)")
+      ->type_name("N")
+      ->check(cli::at_least(0LL));
+  app.footer(
+      "Reads each OFF/OBJ/PLY/STL file and prints check_mesh()'s report: counts of vertices, faces, edges and\n"
+      "components; boundary edges and loops; non-manifold edges and vertices; inconsistently oriented edges;\n"
+      "degenerate faces; duplicate, non-finite and unreferenced vertices; Euler characteristic and genus per\n"
+      "component; and up to N offending element indices (0-based) per problem.\n"
+      "\n"
+      "Exit code 0 when every file was read, 1 when any could not be (the error, naming file and line or\n"
+      "byte offset, goes to stderr), 2 on a usage error.");
+  return [o] { return run_inspect(*o); };
+}
+
 const cli::register_command reg{
     "inspect",
-    {"print a mesh check (size, components, boundary, manifoldness, genus, defects) for mesh files",
-     "usage: shapestruct inspect FILE|DIR... [--json] [--max-examples N]\n"
-     "\n"
-     "Reads each OFF/OBJ/PLY/STL file (a DIR stands for every such file below it, sorted) and prints\n"
-     "check_mesh()'s report: counts of vertices, faces, edges and components; boundary edges and loops;\n"
-     "non-manifold edges and vertices; inconsistently oriented edges; degenerate faces; duplicate,\n"
-     "non-finite and unreferenced vertices; Euler characteristic and genus per component; and up to N\n"
-     "offending element indices (0-based) per problem.\n"
-     "\n"
-     "  --json             one JSON array, an object {file, ok, report | error} per file\n"
-     "  --max-examples N   offending elements listed per problem (default 10)\n"
-     "\n"
-     "Exit code 0 when every file was read, 1 when any could not be (the error, naming file and line or\n"
-     "byte offset, goes to stderr), 2 on a usage error.",
-     run_inspect}};
+    {"print a mesh check (size, components, boundary, manifoldness, genus, defects) for mesh files", setup_inspect}};
 
 }  // namespace

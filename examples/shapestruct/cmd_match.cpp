@@ -4,9 +4,12 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "command.hpp"
+#include "option_checks.hpp"
 #include "shapestruct/blended/blended_matcher.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/io/vertex_map_file.hpp"
@@ -17,57 +20,40 @@ namespace {
 using namespace shapestruct;
 using namespace shapestruct::cli;
 
-const char* usage_text =
-    "usage: shapestruct match SRC TGT -o OUT.map [options]\n"
-    "\n"
-    "Blended intrinsic maps (dissertation ch. 3) from SRC to TGT (closed genus-0 meshes: OFF, OBJ, PLY, STL).\n"
-    "Writes the benchmark's dense map: one line per SRC vertex, the 0-based TGT vertex it maps to.\n"
-    "\n"
-    "options:\n"
-    "  -o, --output OUT.map     the dense vertex map (required)\n"
-    "  --precise OUT.txt        per SRC vertex: target face and barycentric weights, 'face b0 b1 b2'\n"
-    "  --candidates OUT.txt     every blended map considered: group size, eigen-weight, score (selected first)\n"
-    "  --colors PREFIX          colour-transfer PLY pair: PREFIX_target.ply coloured by position,\n"
-    "                           PREFIX_source.ply coloured through the map\n"
-    "  --samples N              even samples for confidence/consistency (default 256)\n"
-    "  --features N             at most N AGD-maxima feature points per mesh (default 10)\n"
-    "  --feature-radius R       AGD maxima closer than R (units of sqrt(area)) are one feature (default 0.15)\n"
-    "  --max-maps N             candidate conformal maps kept, the most confident (default 10000)\n"
-    "  --max-enumerated N       cap on enumerated triplet maps before that (default 30000)\n"
-    "  --pruning distances|random  how that cap prunes: keep the triplets that preserve feature-to-feature\n"
-    "                           geodesic distances best (default), or a seeded random choice (the chapter's)\n"
-    "  --seed S                 seed of the random pruning (default 1)\n"
-    "  --close-holes            fill boundary loops of up to 64 edges before matching (off by default)\n"
-    "  --keep-largest           keep only the largest connected component (off by default)\n"
-    "  --threads T              worker threads, 0 = all cores (default 0)\n"
-    "  -v, --verbose            progress and timings per stage on stderr\n";
+/// The command line of `shapestruct match`.
+struct match_options {
+  std::string src, tgt, out, precise, candidates, colors;
+  long long samples = 256;
+  long long features = 10;
+  double feature_radius = blended_matcher_options{}.shape.feature_radius;
+  long long max_maps = 10000;
+  long long max_enumerated = 30000;
+  std::string pruning = "distances";
+  long long seed = 1;
+  bool close_holes = false;
+  bool keep_largest = false;
+  long long threads = 0;
+  bool verbose = false;
+};
 
-int run_match(const std::vector<std::string>& args) {
-  arg_reader r(args);
-  const std::string out = r.option({"-o", "--output"});
-  const std::string precise = r.option({"--precise"});
-  const std::string cand = r.option({"--candidates"});
-  const std::string colors = r.option({"--colors"});
+int run_match(const match_options& m) {
+  const std::string& out = m.out;
+  const std::string& precise = m.precise;
+  const std::string& cand = m.candidates;
+  const std::string& colors = m.colors;
   blended_matcher_options o;
-  o.shape.num_samples = r.integer({"--samples"}, 256);
-  o.shape.max_features = r.integer({"--features"}, 10);
-  o.shape.feature_radius = r.real({"--feature-radius"}, o.shape.feature_radius);
-  const long long max_maps = r.integer({"--max-maps"}, 10000);
-  const long long max_enumerated = r.integer({"--max-enumerated"}, 30000);
-  const long long seed = r.integer({"--seed"}, 1);
-  const std::string pruning = r.option({"--pruning"}, "distances");
-  o.shape.close_small_holes = r.flag("--close-holes");
-  o.shape.keep_largest_component = r.flag("--keep-largest");
-  o.threads = static_cast<int>(r.integer({"--threads"}, 0));
-  const bool verbose = r.flag("-v") || r.flag("--verbose");
-  const auto pos = r.positionals();
-  if (pos.size() != 2) throw usage_error("need SRC and TGT meshes");
-  if (out.empty()) throw usage_error("need -o OUT.map");
-  if (max_maps < 1) throw usage_error("--max-maps must be >= 1");
-  if (max_enumerated < 1) throw usage_error("--max-enumerated must be >= 1");
-  if (pruning != "distances" && pruning != "random") throw usage_error("--pruning must be distances or random");
-  o.max_maps = max_maps;
-  if (o.threads < 0) throw usage_error("--threads must be >= 0");
+  o.shape.num_samples = m.samples;
+  o.shape.max_features = m.features;
+  o.shape.feature_radius = m.feature_radius;
+  const long long max_enumerated = m.max_enumerated;
+  const long long seed = m.seed;
+  const std::string& pruning = m.pruning;
+  o.shape.close_small_holes = m.close_holes;
+  o.shape.keep_largest_component = m.keep_largest;
+  o.threads = static_cast<int>(m.threads);
+  const bool verbose = m.verbose;
+  const std::vector<std::string> pos{m.src, m.tgt};
+  o.max_maps = m.max_maps;
   if (verbose)
     o.on_stage = [](const std::string& stage, double s) { std::fprintf(stderr, "  %-12s %8.3f s\n", stage.c_str(), s); };
   triplet_candidates cands;
@@ -143,6 +129,51 @@ int run_match(const std::vector<std::string>& args) {
   return 0;
 }
 
-const register_command reg{"match", {"blended intrinsic maps between two meshes (writes a dense .map)", usage_text, run_match}};
+command_fn setup_match(CLI::App& app) {
+  auto m = std::make_shared<match_options>();
+  app.add_option("SRC", m->src, "source mesh")->required();
+  app.add_option("TGT", m->tgt, "target mesh")->required();
+  app.add_option("-o,--output", m->out, "the dense vertex map")->type_name("OUT.map")->required();
+  app.add_option("--precise", m->precise, "per SRC vertex: target face and barycentric weights, 'face b0 b1 b2'")
+      ->type_name("OUT.txt");
+  app.add_option("--candidates", m->candidates,
+                 "every blended map considered: group size, eigen-weight, score (selected first)")
+      ->type_name("OUT.txt");
+  app.add_option("--colors", m->colors,
+                 "colour-transfer PLY pair: PREFIX_target.ply coloured by position,\n"
+                 "PREFIX_source.ply coloured through the map")
+      ->type_name("PREFIX");
+  app.add_option("--samples", m->samples, "even samples for confidence/consistency (default 256)")
+      ->type_name("N")
+      ->check(integer());
+  app.add_option("--features", m->features, "at most N AGD-maxima feature points per mesh (default 10)")
+      ->type_name("N")
+      ->check(integer());
+  app.add_option("--feature-radius", m->feature_radius,
+                 "AGD maxima closer than R (units of sqrt(area)) are one feature (default 0.15)")
+      ->type_name("R");
+  app.add_option("--max-maps", m->max_maps, "candidate conformal maps kept, the most confident (default 10000)")
+      ->type_name("N")
+      ->check(at_least(1LL));
+  app.add_option("--max-enumerated", m->max_enumerated, "cap on enumerated triplet maps before that (default 30000)")
+      ->type_name("N")
+      ->check(at_least(1LL));
+  app.add_option("--pruning", m->pruning,
+                 "how that cap prunes: keep the triplets that preserve feature-to-feature\n"
+                 "geodesic distances best (default), or a seeded random choice (the chapter's)")
+      ->type_name("distances|random")
+      ->check(one_of({"distances", "random"}));
+  app.add_option("--seed", m->seed, "seed of the random pruning (default 1)")->type_name("S")->check(integer());
+  app.add_flag("--close-holes", m->close_holes, "fill boundary loops of up to 64 edges before matching (off by default)");
+  app.add_flag("--keep-largest", m->keep_largest, "keep only the largest connected component (off by default)");
+  app.add_option("--threads", m->threads, "worker threads, 0 = all cores (default 0)")->type_name("T")->check(at_least(0LL));
+  app.add_flag("-v,--verbose", m->verbose, "progress and timings per stage on stderr");
+  app.footer(
+      "Blended intrinsic maps (dissertation ch. 3) from SRC to TGT (closed genus-0 meshes: OFF, OBJ, PLY, STL).\n"
+      "Writes the benchmark's dense map: one line per SRC vertex, the 0-based TGT vertex it maps to.");
+  return [m] { return run_match(*m); };
+}
+
+const register_command reg{"match", {"blended intrinsic maps between two meshes (writes a dense .map)", setup_match}};
 
 }  // namespace

@@ -3,10 +3,12 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "command.hpp"
+#include "option_checks.hpp"
 #include "templates_run.hpp"
 #include "shapestruct/templates/collection_runner.hpp"
 
@@ -14,27 +16,19 @@ namespace {
 
 using namespace shapestruct;
 
-int run_templates(const std::vector<std::string>& args) {
-  cli::arg_reader reader(args);
-  const std::string out = reader.option({"-o", "--output"});
-  cli::templates_cli_options o;
-  o.template_file = reader.option({"--template", "-t"});
-  o.threads = reader.integer({"--threads"}, 0);
-  o.points = reader.integer({"--points"}, 1500);
-  o.learn_subset = reader.integer({"--learn-subset"}, 200);
-  o.up = reader.integer({"--up"}, 1);
-  o.parts = reader.integer({"--parts"}, 4);
-  o.learn_best = reader.integer({"--learn-best"}, 2);
-  o.no_learn = reader.flag("--no-learn");
-  o.no_ply = reader.flag("--no-ply");
-  o.no_points = reader.flag("--no-points");
-  const bool quiet = reader.flag("--quiet");
-  const auto pos = reader.positionals();
-  if (pos.size() != 1) throw cli::usage_error("expected one input folder DIR");
-  if (out.empty()) throw cli::usage_error("-o OUT is required");
-  cli::check_templates_options(o);
-  const auto files = list_shape_files(pos[0]);
-  if (files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + pos[0]);
+/// The command line of `shapestruct templates`.
+struct templates_command_line {
+  std::string input, out;
+  cli::templates_cli_options options;
+  bool quiet = false;
+};
+
+int run_templates(const templates_command_line& c) {
+  const std::string& out = c.out;
+  const cli::templates_cli_options& o = c.options;
+  const bool quiet = c.quiet;
+  const auto files = list_shape_files(c.input);
+  if (files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + c.input);
   cli::templates_hooks opt;
   const auto start = std::chrono::steady_clock::now();
   auto phase_start = start;
@@ -79,12 +73,6 @@ namespace shapestruct::cli {
 
 std::vector<std::filesystem::path> shape_files_in(const std::filesystem::path& dir) { return list_shape_files(dir); }
 
-void check_templates_options(const templates_cli_options& o) {
-  if (o.threads < 0 || o.points < 16 || o.learn_subset < 1 || o.up < 0 || o.up > 2 || o.parts < 1 || o.learn_best < 1)
-    throw cli::usage_error(
-        "--threads >= 0, --points >= 16, --learn-subset >= 1, --up 0|1|2, --parts >= 1, --learn-best >= 1");
-}
-
 templates_run_summary run_templates_folder(const std::vector<std::filesystem::path>& files,
                                            const std::filesystem::path& out, const templates_cli_options& o,
                                            const templates_hooks& hooks) {
@@ -120,32 +108,47 @@ templates_run_summary run_templates_folder(const std::vector<std::filesystem::pa
 
 namespace {
 
+cli::command_fn setup_templates(CLI::App& app) {
+  auto c = std::make_shared<templates_command_line>();
+  auto& o = c->options;
+  app.add_option("DIR", c->input, "the input folder (its .off .obj .ply .stl files)")->required();
+  app.add_option("-o,--output", c->out, "the output folder")->type_name("OUT")->required();
+  app.add_option("--template,-t", o.template_file,
+                 "initial template(s) (hand-authored or from an earlier run); default: automatic")
+      ->type_name("T.json");
+  app.add_option("--threads", o.threads, "worker threads, 0 = all cores (default); results do not depend on N")
+      ->type_name("N")
+      ->check(cli::at_least(0LL));
+  app.add_option("--points", o.points, "samples per shape (default 1500)")->type_name("P")->check(cli::at_least(16LL));
+  app.add_option("--learn-subset", o.learn_subset, "shapes held in memory for learning (default 200)")
+      ->type_name("S")
+      ->check(cli::at_least(1LL));
+  app.add_option("--up", o.up, "up axis of the collection: 0 x, 1 y (default), 2 z")
+      ->type_name("0|1|2")
+      ->check(cli::in_range(0LL, 2LL));
+  app.add_option("--parts", o.parts, "parts of automatic templates (default 4)")->type_name("K")->check(cli::at_least(1LL));
+  app.add_option("--learn-best", o.learn_best,
+                 "automatic mode: learn from the B best candidates, keep the best set\n(default 2; chapter 10)")
+      ->type_name("B")
+      ->check(cli::at_least(1LL));
+  app.add_flag("--no-learn", o.no_learn, "label with the given templates as they are");
+  app.add_flag("--no-ply", o.no_ply, "skip the visualisation outputs (ply/)");
+  app.add_flag("--no-points", o.no_points, "skip the per-point outputs (STEM.points.txt)");
+  app.add_flag("--quiet", c->quiet, "no progress display");
+  app.footer(
+      "Fits deformable part templates to every mesh / polygon soup in DIR (.off .obj .ply .stl) and writes to OUT:\n"
+      "  templates.json     the learned template set (edit it and pass it back with --template)\n"
+      "  STEM.seg           one 0-based part label per face of the input (COSEG/PSB format)\n"
+      "  STEM.fit.json      cluster (template), energy, rigid transform, per-part deformation\n"
+      "  STEM.points.txt    per sample point: label, template correspondence, co-aligned positions\n"
+      "  ply/STEM.ply       faces coloured by part; ply/STEM.boxes.ply the fitted boxes\n"
+      "  summary.json       clusters and skipped shapes\n"
+      "An interrupted run resumes: finished shapes (STEM.fit.json present) are not redone.");
+  return [c] { return run_templates(*c); };
+}
+
 const cli::register_command reg{
     "templates",
-    {"learn part-based templates; segment, correspond and co-align a folder of shapes (chapter 5)",
-     "usage: shapestruct templates DIR -o OUT [--template T.json] [--threads N] [--points P] [--learn-subset S]\n"
-     "                            [--up 0|1|2] [--parts K] [--learn-best B] [--no-learn] [--no-ply] [--no-points]\n"
-     "                            [--quiet]\n"
-     "\n"
-     "Fits deformable part templates to every mesh / polygon soup in DIR (.off .obj .ply .stl) and writes to OUT:\n"
-     "  templates.json     the learned template set (edit it and pass it back with --template)\n"
-     "  STEM.seg           one 0-based part label per face of the input (COSEG/PSB format)\n"
-     "  STEM.fit.json      cluster (template), energy, rigid transform, per-part deformation\n"
-     "  STEM.points.txt    per sample point: label, template correspondence, co-aligned positions\n"
-     "  ply/STEM.ply       faces coloured by part; ply/STEM.boxes.ply the fitted boxes\n"
-     "  summary.json       clusters and skipped shapes\n"
-     "An interrupted run resumes: finished shapes (STEM.fit.json present) are not redone.\n"
-     "\n"
-     "options:\n"
-     "  --template T.json  initial template(s) (hand-authored or from an earlier run); default: automatic\n"
-     "  --threads N        worker threads, 0 = all cores (default); results do not depend on N\n"
-     "  --points P         samples per shape (default 1500)\n"
-     "  --learn-subset S   shapes held in memory for learning (default 200)\n"
-     "  --up A             up axis of the collection: 0 x, 1 y (default), 2 z\n"
-     "  --parts K          parts of automatic templates (default 4)\n"
-     "  --learn-best B     automatic mode: learn from the B best candidates, keep the best set (default 2; chapter 10)\n"
-     "  --no-learn         label with the given templates as they are\n"
-     "  --no-ply, --no-points  skip the visualisation / per-point outputs",
-     run_templates}};
+    {"learn part-based templates; segment, correspond and co-align a folder of shapes (chapter 5)", setup_templates}};
 
 }  // namespace

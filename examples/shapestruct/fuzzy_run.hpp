@@ -14,7 +14,8 @@
 
 namespace shapestruct::cli {
 
-/// The options of `shapestruct fuzzy` (defaults as documented in its usage).
+/// The options of `shapestruct fuzzy` (defaults as documented in its --help; their ranges are checked when
+/// the command line is parsed).
 struct fuzzy_cli_options {
   std::string mode = "auto";  ///< auto | extrinsic | intrinsic
   long long samples = 128;
@@ -42,9 +43,6 @@ struct fuzzy_run_report {
   double seconds_records = 0, seconds_fuzzy = 0, seconds_total = 0;
   std::vector<std::array<double, 3>> iteration_seconds;  ///< per round: align, embed, optimize
 };
-
-/// Throws usage_error when an option is out of range (the message names the options).
-void check_fuzzy_options(const fuzzy_cli_options& o);
 
 /// The pipeline of `shapestruct fuzzy` on `files`, writing exactly its files into `out` (see
 /// timings_in_results); `input_name` only names the folder in messages.

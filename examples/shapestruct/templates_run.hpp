@@ -13,7 +13,8 @@
 
 namespace shapestruct::cli {
 
-/// The options of `shapestruct templates` (defaults as documented in its usage).
+/// The options of `shapestruct templates` (defaults as documented in its --help; their ranges are checked
+/// when the command line is parsed).
 struct templates_cli_options {
   std::string template_file;  ///< --template T.json ("" = automatic)
   long long threads = 0;
@@ -44,9 +45,6 @@ struct templates_run_summary {
 
 /// The library's list_shape_files(dir): the .off/.obj/.ply/.stl files directly in dir, sorted.
 std::vector<std::filesystem::path> shape_files_in(const std::filesystem::path& dir);
-
-/// Throws usage_error when an option is out of range (the message names the options).
-void check_templates_options(const templates_cli_options& o);
 
 /// run_template_collection(files, out, templates read from o.template_file, options built from o): exactly what
 /// `shapestruct templates` writes into OUT.
