@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 #include "command.hpp"
+#include "feature_point_accuracy.hpp"
 #include "fuzzy_run.hpp"
 #include "option_checks.hpp"
 #include "process_group.hpp"
@@ -82,7 +83,7 @@ std::string percent(double x) {
   return b;
 }
 
-const char* stage_names[] = {"inspect", "templates", "evaluate", "fuzzy", "report"};
+const char* stage_names[] = {"inspect", "templates", "fuzzy", "evaluate", "report"};
 
 /// While a phase without progress reports runs (the templates' learning), redraws "STAGE: PHASE, N s" once a
 /// second on a terminal, so the display never stands still; stopped by the next phase, progress or stage end.
@@ -258,14 +259,54 @@ std::vector<shape_check> read_inspect_summary(const fs::path& out) {
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// Stage 3: evaluate (when there is ground truth): the labeling accuracy of the templates stage, the protocol of
-// bench/runners/template_eval.cpp (area-weighted, one best one-to-one label mapping for the whole collection,
-// every shape weighted equally), plus the secondary figure with a mapping per shape.
+// Stage 4: evaluate (when there is ground truth). Part labels (STEM.seg): the labeling accuracy of the templates
+// stage, the protocol of bench/runners/template_eval.cpp (area-weighted, one best one-to-one label mapping for
+// the whole collection, every shape weighted equally), plus the secondary figure with a mapping per shape.
+// Feature points (STEM.vts / STEM.pid, as SHREC'07 and SCAPE give them): the fuzzy correspondences' error.
 
-bool has_truth(const analyze_settings& s, const std::vector<shape_check>& checks) {
+bool has_part_truth(const analyze_settings& s, const std::vector<shape_check>& checks) {
   for (const auto& c : checks)
     if (c.usable && fs::exists(s.truth / (c.name + ".seg"))) return true;
   return false;
+}
+
+bool has_point_truth(const analyze_settings& s, const std::vector<shape_check>& checks) {
+  for (const auto& c : checks)
+    if (c.usable && !cli::feature_point_file(s.truth, c.name).empty()) return true;
+  return false;
+}
+
+/// evaluate/correspondence.json: feature points carried by the fuzzy correspondences (feature_point_accuracy).
+void run_feature_point_evaluation(const analyze_settings& s, cli::progress_line& bar) {
+  json_value::object o{{"truth", s.truth_given ? s.truth.string() : std::string("beside the shapes (DIR/STEM.vts)")},
+                       {"protocol", "every ordered pair (a, b) of shapes with feature points: a's k-th feature point "
+                                    "mapped by the best fuzzy correspondence, error = geodesic distance on b to b's "
+                                    "k-th feature point / sqrt(area of b) (the BIM benchmark's scale), raw (no "
+                                    "symmetry flips)"}};
+  if (!fs::exists(s.out / "fuzzy" / "fuzzy.bin")) {
+    o.emplace_back("not_scored", "the fuzzy stage produced no correspondences");
+  } else {
+    const auto r = cli::evaluate_feature_points(s.out / "fuzzy", s.truth, static_cast<int>(s.threads),
+                                                [&](std::size_t d, std::size_t t) { bar.update("feature points", d, t); });
+    bar.finish();
+    o.emplace_back("shapes_scored", static_cast<long long>(r.shapes_scored));
+    o.emplace_back("pairs", static_cast<long long>(r.pairs));
+    o.emplace_back("points", static_cast<long long>(r.points));
+    if (r.points > 0) {
+      o.emplace_back("within_0.25", r.within_025);
+      o.emplace_back("within_0.10", r.within_010);
+      o.emplace_back("within_0.05", r.within_005);
+      o.emplace_back("mean_error", r.mean);
+    }
+    json_value::array missing, pairs;
+    for (const auto& n : r.not_scored) missing.emplace_back(n);
+    o.emplace_back("shapes_without_truth", json_value(std::move(missing)));
+    for (const auto& p : r.per_pair)
+      pairs.emplace_back(json_value::object{{"source", p.source}, {"target", p.target}, {"mean_error", p.mean},
+                                            {"within_0.25", p.within_025}});
+    o.emplace_back("per_pair", json_value(std::move(pairs)));
+  }
+  write_json_atomic(s.out / "evaluate" / "correspondence.json", json_value(std::move(o)));
 }
 
 void run_evaluate_stage(const analyze_settings& s, const std::vector<fs::path>& files,
@@ -655,8 +696,16 @@ void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& fi
       << " shapes; " << html_escape(acc.find("protocol")->as_string()) << "; with a mapping per shape: "
       << percent(acc.find("accuracy_mapping_per_shape")->as_number()) << ").</p>\n";
   } else {
-    h << "<p id=\"accuracy\">No ground truth (no <code>STEM.seg</code> beside the shapes and no <code>--truth</code>): "
-         "accuracy not measured.</p>\n";
+    h << "<p id=\"accuracy\">No part-label ground truth (no <code>STEM.seg</code> beside the shapes and no "
+         "<code>--truth</code>): part-labeling accuracy not measured.</p>\n";
+  }
+  const json_value corr = read_json_or_null(s.out / "evaluate" / "correspondence.json");
+  if (corr.is_object() && corr.find("within_0.25")) {
+    h << "<p class=\"big\" id=\"correspondence-accuracy\">Correspondence accuracy against the ground-truth feature "
+         "points: <b>" << percent(corr.find("within_0.25")->as_number()) << "</b> within 0.25 &radic;area (within 0.10: "
+      << percent(corr.find("within_0.10")->as_number()) << "; mean error " << corr.find("mean_error")->as_number()
+      << "; " << static_cast<long long>(corr.find("pairs")->as_number()) << " ordered pairs; "
+      << html_escape(corr.find("protocol")->as_string()) << ").</p>\n";
   }
   h << "<p>Files: <a href=\"../manifest.json\">manifest.json</a> (what every file is), "
     << "<a href=\"../templates/templates.json\">templates.json</a>";
@@ -775,6 +824,8 @@ std::string describe(const std::string& rel) {
   if (starts("templates/") && ends(".seg")) return "one 0-based part label per face of the input shape";
   if (rel == "templates/ply") return "faces coloured by part (STEM.ply) and the fitted boxes (STEM.boxes.ply) per shape";
   if (rel == "evaluate/accuracy.json") return "part-labeling accuracy of the templates stage against the ground truth";
+  if (rel == "evaluate/correspondence.json")
+    return "feature-point error of the fuzzy correspondences against the ground truth (geodesic / sqrt(area))";
   if (rel == "fuzzy/collection.json") return "fuzzy collection: mode, samples, shapes, skipped, pairs aligned, rounds";
   if (rel == "fuzzy/samples.txt") return "the K samples of every shape";
   if (rel == "fuzzy/graph.txt") return "the final alignment graph";
@@ -953,20 +1004,7 @@ int run_analyze(const analyze_command_line& c) {
            " shapes labelled, " + std::to_string(sum.failed) + " failed";
   });
 
-  // 3. evaluate (only with ground truth)
-  const bool truth_known = has_truth(s, checks);
-  if (truth_known) {
-    stage("evaluate", [&] {
-      cli::progress_line bar(s.quiet, "evaluate/");
-      if (leader) run_evaluate_stage(s, all_files, checks, bar);  // small: one process
-      return std::string("done");
-    });
-  } else {
-    ++stage_no;
-    say("stage 3/5 evaluate: no ground truth (no STEM.seg beside the shapes, no --truth): accuracy not measured");
-  }
-
-  // 4. fuzzy
+  // 3. fuzzy
   stage("fuzzy", [&] {
     const auto [mode, why] = mode_and_reason(s, checks);
     say("fuzzy: " + (s.mode == "auto" ? std::string("expecting ") + mode + " mode: " : std::string()) + why);
@@ -975,6 +1013,23 @@ int run_analyze(const analyze_command_line& c) {
     if (r.exit_code != 0) return std::string("failed: fewer than two usable shapes, no correspondences");
     return r.mode + " mode, " + std::to_string(r.shapes) + " shapes";
   });
+
+  // 4. evaluate (only with ground truth; small: one process)
+  const bool part_truth = has_part_truth(s, checks), point_truth = has_point_truth(s, checks);
+  if (part_truth || point_truth) {
+    stage("evaluate", [&] {
+      cli::progress_line bar(s.quiet, "evaluate/");
+      if (leader && part_truth) run_evaluate_stage(s, all_files, checks, bar);
+      if (leader && point_truth) run_feature_point_evaluation(s, bar);
+      return std::string(part_truth && point_truth ? "part labels and feature points"
+                         : part_truth              ? "part labels"
+                                                   : "feature points");
+    });
+  } else {
+    ++stage_no;
+    say("stage 4/5 evaluate: no ground truth (no STEM.seg or STEM.vts beside the shapes, no --truth): accuracy not "
+        "measured");
+  }
 
   // 5. report
   stage("report", [&] {
@@ -1016,6 +1071,16 @@ int run_analyze(const analyze_command_line& c) {
                                                                      {"details", "evaluate/accuracy.json"}}));
   else
     manifest.emplace_back("accuracy", json_value(nullptr));
+  const json_value corr = read_json_or_null(s.out / "evaluate" / "correspondence.json");
+  const bool corr_scored = corr.is_object() && corr.find("within_0.25");
+  if (corr_scored)
+    manifest.emplace_back("correspondence_accuracy",
+                          json_value(json_value::object{{"within_0.25", corr.find("within_0.25")->as_number()},
+                                                        {"mean_error", corr.find("mean_error")->as_number()},
+                                                        {"pairs", corr.find("pairs")->as_number()},
+                                                        {"details", "evaluate/correspondence.json"}}));
+  else
+    manifest.emplace_back("correspondence_accuracy", json_value(nullptr));
   manifest.emplace_back("report", "report/index.html");
   manifest.emplace_back("files", list_outputs(s.out));
   write_json_atomic(s.out / "manifest.json", json_value(std::move(manifest)));
@@ -1026,8 +1091,13 @@ int run_analyze(const analyze_command_line& c) {
   if (acc.is_object() && acc.find("accuracy"))
     std::printf("accuracy: %.2f %% part-labeling accuracy against the ground truth (%lld shapes)\n",
                 100.0 * acc.find("accuracy")->as_number(), static_cast<long long>(acc.find("shapes_scored")->as_number()));
-  else
+  else if (!corr_scored)
     std::printf("accuracy: not measured (no ground truth)\n");
+  if (corr_scored)
+    std::printf("accuracy: %.1f %% of feature points carried within 0.25 sqrt(area) by the fuzzy correspondences, "
+                "mean error %.3f (%lld ordered pairs)\n",
+                100.0 * corr.find("within_0.25")->as_number(), corr.find("mean_error")->as_number(),
+                static_cast<long long>(corr.find("pairs")->as_number()));
   std::printf("report: %s\n", (s.out / "report" / "index.html").string().c_str());
   std::printf("manifest: %s\n", (s.out / "manifest.json").string().c_str());
   std::printf("explore: shapestruct explore %s\n", (s.out / "fuzzy").string().c_str());

@@ -16,7 +16,7 @@ import signal
 import subprocess
 import sys
 
-STAGES = ["inspect", "templates", "evaluate", "fuzzy", "report"]
+STAGES = ["inspect", "templates", "fuzzy", "evaluate", "report"]
 
 
 def tree(out):
