@@ -154,7 +154,9 @@ constexpr const char* json_kind_name() {
 /// Parses JSON text (RFC 8259 through nlohmann-json: no comments, no trailing commas) into an ordered_json, whose
 /// objects keep their keys in the file's order. Unlike nlohmann's default, an object with the same key twice is
 /// refused, and nesting deeper than 256 levels too. `path` only names the source in errors.
-/// \throws io_error (syntax, or truncated at end of input) whose message reads "PATH:LINE: column C: problem".
+/// \throws io_error (syntax, or truncated at end of input) whose message reads "PATH:LINE: column C: problem"; C is
+/// where the reader noticed the problem, i.e. the last character of the offending token (the key's opening quote
+/// for a duplicate key), counted in bytes from 1.
 /// \returns the document's value. O(length).
 inline nlohmann::ordered_json parse_json_text(std::string_view text, const std::string& path = {}) {
   using json = nlohmann::ordered_json;
