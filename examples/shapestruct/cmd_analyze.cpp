@@ -39,7 +39,7 @@
 #include "shapestruct/eval/labeling_accuracy.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
 #include "shapestruct/io/file_bytes.hpp"
-#include "shapestruct/io/json.hpp"
+#include "shapestruct/io/json_file.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/io/segmentation_file.hpp"
 
@@ -47,6 +47,7 @@ namespace {
 
 using namespace shapestruct;
 namespace fs = std::filesystem;
+using ojson = nlohmann::ordered_json;  // objects keep their keys in insertion order: the files are written in it
 using steady = std::chrono::steady_clock;
 
 double since(steady::time_point t) { return std::chrono::duration<double>(steady::now() - t).count(); }
@@ -61,7 +62,7 @@ bool is_temporary(const fs::path& p) {
   return p.extension() == ".tmp" || (name.rfind('.', 0) == 0 && name.find(".tmp-") != std::string::npos);
 }
 
-void write_json_atomic(const fs::path& path, const json_value& v) { write_atomic(path, to_json_string(v) + "\n"); }
+void write_json_atomic(const fs::path& path, const ojson& v) { write_atomic(path, format_json(v) + "\n"); }
 
 std::string html_escape(const std::string& s) {
   std::string o;
@@ -231,28 +232,28 @@ void run_inspect_stage(const analyze_settings& s, const std::vector<fs::path>& f
       c.reason = "has the same name as " + it->second + " (the stages name their outputs by file stem)";
     }
   }
-  json_value::array shapes;
+  auto shapes = ojson::array();
   for (const auto& c : checks) {
-    json_value::object o{{"name", c.name}, {"file", c.file}, {"usable", c.usable}};
-    if (!c.usable) o.emplace_back("reason", c.reason);
-    o.emplace_back("closed_genus0", c.closed_genus0);
-    o.emplace_back("topology", c.topology);
-    shapes.emplace_back(std::move(o));
+    auto o = ojson::object({{"name", c.name}, {"file", c.file}, {"usable", c.usable}});
+    if (!c.usable) o["reason"] = c.reason;
+    o["closed_genus0"] = c.closed_genus0;
+    o["topology"] = c.topology;
+    shapes.push_back(std::move(o));
   }
-  write_json_atomic(dir / "summary.json", json_value(json_value::object{{"shapes", json_value(std::move(shapes))}}));
+  write_json_atomic(dir / "summary.json", ojson::object({{"shapes", std::move(shapes)}}));
 }
 
 std::vector<shape_check> read_inspect_summary(const fs::path& out) {
   std::vector<shape_check> v;
-  const json_value j = read_json((out / "inspect" / "summary.json").string());
-  for (const auto& e : j.find("shapes")->as_array()) {
+  const ojson j = read_json_file((out / "inspect" / "summary.json").string());
+  for (const auto& e : j.at("shapes")) {
     shape_check c;
-    c.name = e.find("name")->as_string();
-    c.file = e.find("file")->as_string();
-    c.usable = e.find("usable")->as_bool();
-    if (const auto* r = e.find("reason")) c.reason = r->as_string();
-    c.closed_genus0 = e.find("closed_genus0")->as_bool();
-    c.topology = e.find("topology")->as_string();
+    c.name = e.at("name").get<std::string>();
+    c.file = e.at("file").get<std::string>();
+    c.usable = e.at("usable").get<bool>();
+    if (const auto* r = json_member(e, "reason")) c.reason = r->get<std::string>();
+    c.closed_genus0 = e.at("closed_genus0").get<bool>();
+    c.topology = e.at("topology").get<std::string>();
     v.push_back(std::move(c));
   }
   return v;
@@ -278,35 +279,34 @@ bool has_point_truth(const analyze_settings& s, const std::vector<shape_check>& 
 
 /// evaluate/correspondence.json: feature points carried by the fuzzy correspondences (feature_point_accuracy).
 void run_feature_point_evaluation(const analyze_settings& s, cli::progress_line& bar) {
-  json_value::object o{{"truth", s.truth_given ? s.truth.string() : std::string("beside the shapes (DIR/STEM.vts)")},
+  ojson o = ojson::object({{"truth", s.truth_given ? s.truth.string() : std::string("beside the shapes (DIR/STEM.vts)")},
                        {"protocol", "every ordered pair (a, b) of shapes with feature points: a's k-th feature point "
                                     "mapped by the best fuzzy correspondence, error = geodesic distance on b to b's "
                                     "k-th feature point / sqrt(area of b) (the BIM benchmark's scale), raw (no "
-                                    "symmetry flips)"}};
+                                    "symmetry flips)"}});
   if (!fs::exists(s.out / "fuzzy" / "fuzzy.bin")) {
-    o.emplace_back("not_scored", "the fuzzy stage produced no correspondences");
+    o["not_scored"] = "the fuzzy stage produced no correspondences";
   } else {
     const auto r = cli::evaluate_feature_points(s.out / "fuzzy", s.truth, static_cast<int>(s.threads),
                                                 [&](std::size_t d, std::size_t t) { bar.update("feature points", d, t); });
     bar.finish();
-    o.emplace_back("shapes_scored", static_cast<long long>(r.shapes_scored));
-    o.emplace_back("pairs", static_cast<long long>(r.pairs));
-    o.emplace_back("points", static_cast<long long>(r.points));
+    o["shapes_scored"] = static_cast<long long>(r.shapes_scored);
+    o["pairs"] = static_cast<long long>(r.pairs);
+    o["points"] = static_cast<long long>(r.points);
     if (r.points > 0) {
-      o.emplace_back("within_0.25", r.within_025);
-      o.emplace_back("within_0.10", r.within_010);
-      o.emplace_back("within_0.05", r.within_005);
-      o.emplace_back("mean_error", r.mean);
+      o["within_0.25"] = r.within_025;
+      o["within_0.10"] = r.within_010;
+      o["within_0.05"] = r.within_005;
+      o["mean_error"] = r.mean;
     }
-    json_value::array missing, pairs;
-    for (const auto& n : r.not_scored) missing.emplace_back(n);
-    o.emplace_back("shapes_without_truth", json_value(std::move(missing)));
+    o["shapes_without_truth"] = r.not_scored;
+    auto pairs = ojson::array();
     for (const auto& p : r.per_pair)
-      pairs.emplace_back(json_value::object{{"source", p.source}, {"target", p.target}, {"mean_error", p.mean},
-                                            {"within_0.25", p.within_025}});
-    o.emplace_back("per_pair", json_value(std::move(pairs)));
+      pairs.push_back(ojson::object({{"source", p.source}, {"target", p.target}, {"mean_error", p.mean},
+                                     {"within_0.25", p.within_025}}));
+    o["per_pair"] = std::move(pairs);
   }
-  write_json_atomic(s.out / "evaluate" / "correspondence.json", json_value(std::move(o)));
+  write_json_atomic(s.out / "evaluate" / "correspondence.json", o);
 }
 
 void run_evaluate_stage(const analyze_settings& s, const std::vector<fs::path>& files,
@@ -314,7 +314,7 @@ void run_evaluate_stage(const analyze_settings& s, const std::vector<fs::path>& 
   const fs::path dir = s.out / "evaluate";
   fs::create_directories(dir);
   std::vector<labeled_shape> all;
-  json_value::array per_shape, not_scored;
+  auto per_shape = ojson::array(), not_scored = ojson::array();
   double per_shape_sum = 0;
   for (std::size_t i = 0; i < files.size(); ++i) {
     bar.update("shapes", i + 1, files.size());
@@ -322,11 +322,11 @@ void run_evaluate_stage(const analyze_settings& s, const std::vector<fs::path>& 
     if (!c.usable) continue;
     const fs::path pred = s.out / "templates" / (c.name + ".seg"), truth = s.truth / (c.name + ".seg");
     if (!fs::exists(truth)) {
-      not_scored.emplace_back(json_value::object{{"name", c.name}, {"reason", "no ground truth file"}});
+      not_scored.push_back(ojson::object({{"name", c.name}, {"reason", "no ground truth file"}}));
       continue;
     }
     if (!fs::exists(pred)) {
-      not_scored.emplace_back(json_value::object{{"name", c.name}, {"reason", "not labelled by the templates stage"}});
+      not_scored.push_back(ojson::object({{"name", c.name}, {"reason", "not labelled by the templates stage"}}));
       continue;
     }
     try {
@@ -338,31 +338,30 @@ void run_evaluate_stage(const analyze_settings& s, const std::vector<fs::path>& 
       l.weight.assign(A.data(), A.data() + A.size());
       const double a = labeling_accuracy({l}).accuracy;
       per_shape_sum += a;
-      per_shape.emplace_back(json_value::object{{"name", c.name}, {"accuracy_own_mapping", a}});
+      per_shape.push_back(ojson::object({{"name", c.name}, {"accuracy_own_mapping", a}}));
       all.push_back(std::move(l));
     } catch (const std::exception& e) {
-      not_scored.emplace_back(json_value::object{{"name", c.name}, {"reason", std::string(e.what())}});
+      not_scored.push_back(ojson::object({{"name", c.name}, {"reason", std::string(e.what())}}));
     }
   }
   bar.finish();
-  json_value::object o{{"truth", s.truth_given ? s.truth.string() : std::string("beside the shapes (DIR/STEM.seg)")},
+  auto o = ojson::object({{"truth", s.truth_given ? s.truth.string() : std::string("beside the shapes (DIR/STEM.seg)")},
                        {"protocol", "fraction of surface area labelled correctly after one best one-to-one mapping of "
                                     "output labels to true labels for the whole collection, every shape weighted "
                                     "equally (as bench/runners/template_eval.cpp)"},
-                       {"shapes_scored", static_cast<long long>(all.size())}};
+                       {"shapes_scored", static_cast<long long>(all.size())}});
   if (!all.empty()) {
     const auto acc = labeling_accuracy(all);
-    o.emplace_back("accuracy", acc.accuracy);
-    o.emplace_back("accuracy_mapping_per_shape", per_shape_sum / double(all.size()));
-    json_value::array mapping;
-    for (const auto t : acc.mapping.to_truth) mapping.emplace_back(static_cast<long long>(t));
-    o.emplace_back("mapping_output_to_true_label", json_value(std::move(mapping)));
-    for (std::size_t k = 0; k < per_shape.size(); ++k)
-      per_shape[k].set("accuracy", acc.per_shape[k]);
+    o["accuracy"] = acc.accuracy;
+    o["accuracy_mapping_per_shape"] = per_shape_sum / double(all.size());
+    auto mapping = ojson::array();
+    for (const auto t : acc.mapping.to_truth) mapping.push_back(static_cast<long long>(t));
+    o["mapping_output_to_true_label"] = std::move(mapping);
+    for (std::size_t k = 0; k < per_shape.size(); ++k) per_shape[k]["accuracy"] = acc.per_shape[k];
   }
-  o.emplace_back("per_shape", json_value(std::move(per_shape)));
-  o.emplace_back("not_scored", json_value(std::move(not_scored)));
-  write_json_atomic(dir / "accuracy.json", json_value(std::move(o)));
+  o["per_shape"] = std::move(per_shape);
+  o["not_scored"] = std::move(not_scored);
+  write_json_atomic(dir / "accuracy.json", o);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -379,13 +378,13 @@ Eigen::Matrix<double, Eigen::Dynamic, 3> view_points(const Eigen::Matrix<double,
   double s = 1;
   if (fs::exists(fit_file)) {
     try {
-      const json_value j = read_json(fit_file.string());
-      const auto& cc = j.find("canonical_center")->as_array();
-      for (int k = 0; k < 3; ++k) c[k] = cc[std::size_t(k)].as_number();
-      s = j.find("canonical_scale")->as_number();
-      const auto& rot = j.find("rotation")->as_array();
+      const ojson j = read_json_file(fit_file.string());
+      const auto& cc = j.at("canonical_center");
+      for (int k = 0; k < 3; ++k) c[k] = cc.at(std::size_t(k)).get<double>();
+      s = j.at("canonical_scale").get<double>();
+      const auto& rot = j.at("rotation");
       for (int r = 0; r < 3; ++r)
-        for (int k = 0; k < 3; ++k) R(r, k) = rot[std::size_t(r)].as_array()[std::size_t(k)].as_number();
+        for (int k = 0; k < 3; ++k) R(r, k) = rot.at(std::size_t(r)).at(std::size_t(k)).get<double>();
       if (!(s > 0) || !R.allFinite()) R.setIdentity(), c.setZero(), s = 1;
     } catch (const std::exception&) {
       R.setIdentity();
@@ -413,23 +412,22 @@ struct template_info {
 
 std::vector<template_info> read_template_infos(const fs::path& file) {
   std::vector<template_info> out;
-  const json_value j = read_json(file.string());
-  auto vec = [](const json_value& a) {
-    const auto& v = a.as_array();
-    return Eigen::Vector3d(v[0].as_number(), v[1].as_number(), v[2].as_number());
+  const ojson j = read_json_file(file.string());
+  auto vec = [](const ojson& v) {
+    return Eigen::Vector3d(v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>());
   };
-  for (const auto& t : j.find("templates")->as_array()) {
+  for (const auto& t : j.at("templates")) {
     template_info ti;
-    if (const auto* id = t.find("id")) ti.id = id->as_string();
-    if (const auto* up = t.find("up_axis")) ti.up = static_cast<int>(up->as_number());
-    for (const auto& p : t.find("parts")->as_array()) {
-      ti.part_names.push_back(p.find("name") ? p.find("name")->as_string() : std::string());
-      ti.labels.push_back(p.find("label") ? static_cast<long>(p.find("label")->as_number()) : -1);
-      ti.centers.push_back(vec(*p.find("center")));
-      ti.sizes.push_back(vec(*p.find("size")));
+    if (const auto* id = json_member(t, "id")) ti.id = id->get<std::string>();
+    if (const auto* up = json_member(t, "up_axis")) ti.up = static_cast<int>(up->get<double>());
+    for (const auto& p : t.at("parts")) {
+      ti.part_names.push_back(json_member(p, "name") ? p.at("name").get<std::string>() : std::string());
+      ti.labels.push_back(json_member(p, "label") ? static_cast<long>(p.at("label").get<double>()) : -1);
+      ti.centers.push_back(vec(p.at("center")));
+      ti.sizes.push_back(vec(p.at("size")));
       Eigen::Matrix3d ax = Eigen::Matrix3d::Identity();
-      if (const auto* a = p.find("axes"))
-        for (int r = 0; r < 3; ++r) ax.row(r) = vec(a->as_array()[std::size_t(r)]).transpose();
+      if (const auto* a = json_member(p, "axes"))
+        for (int r = 0; r < 3; ++r) ax.row(r) = vec(a->at(std::size_t(r))).transpose();
       ti.axes.push_back(ax);
     }
     out.push_back(std::move(ti));
@@ -463,12 +461,12 @@ cli::rgb_image render_boxes(const template_info& t) {
   return cli::render_thumbnail(V, F, colors);
 }
 
-json_value read_json_or_null(const fs::path& p) {
-  if (!fs::exists(p)) return json_value(nullptr);
+ojson read_json_or_null(const fs::path& p) {
+  if (!fs::exists(p)) return nullptr;
   try {
-    return read_json(p.string());
+    return read_json_file(p.string());
   } catch (const std::exception&) {
-    return json_value(nullptr);
+    return nullptr;
   }
 }
 
@@ -481,19 +479,19 @@ std::vector<skipped_shape> collect_skipped(const analyze_settings& s, const std:
   std::vector<skipped_shape> v;
   for (const auto& c : checks)
     if (!c.usable) v.push_back({c.file, "inspect", c.reason});
-  const json_value sum = read_json_or_null(s.out / "templates" / "summary.json");
+  const ojson sum = read_json_or_null(s.out / "templates" / "summary.json");
   if (sum.is_object())
-    if (const auto* f = sum.find("failed"))
-      for (const auto& e : f->as_array())
-        v.push_back({fs::path(e.as_string()).stem().string(), "templates", "could not be fitted (see the run's messages)"});
-  const json_value col = read_json_or_null(s.out / "fuzzy" / "collection.json");
+    if (const auto* f = json_member(sum, "failed"))
+      for (const auto& e : *f)
+        v.push_back({fs::path(e.get<std::string>()).stem().string(), "templates", "could not be fitted (see the run's messages)"});
+  const ojson col = read_json_or_null(s.out / "fuzzy" / "collection.json");
   if (col.is_object()) {
-    if (const auto* f = col.find("skipped"))
-      for (const auto& e : f->as_array())
-        v.push_back({fs::path(e.find("file")->as_string()).stem().string(), "fuzzy", e.find("reason")->as_string()});
-    if (const auto* d = col.find("disconnected"))
-      for (const auto& e : d->as_array())
-        v.push_back({e.as_string(), "fuzzy", "not connected to the rest of the collection (every alignment to it was rejected)"});
+    if (const auto* f = json_member(col, "skipped"))
+      for (const auto& e : *f)
+        v.push_back({fs::path(e.at("file").get<std::string>()).stem().string(), "fuzzy", e.at("reason").get<std::string>()});
+    if (const auto* d = json_member(col, "disconnected"))
+      for (const auto& e : *d)
+        v.push_back({e.get<std::string>(), "fuzzy", "not connected to the rest of the collection (every alignment to it was rejected)"});
   }
   return v;
 }
@@ -510,8 +508,8 @@ std::pair<std::string, std::string> mode_and_reason(const analyze_settings& s, c
     }
   }
   std::string mode;
-  const json_value col = read_json_or_null(s.out / "fuzzy" / "collection.json");
-  if (col.is_object()) mode = col.find("mode")->as_string();
+  const ojson col = read_json_or_null(s.out / "fuzzy" / "collection.json");
+  if (col.is_object()) mode = col.at("mode").get<std::string>();
   std::string why;
   if (s.mode != "auto") why = "--mode " + s.mode + " was given";
   else if (not_g0 == 0) why = "--mode auto: every one of the " + std::to_string(usable) + " usable shapes is a closed genus-0 manifold";
@@ -654,23 +652,23 @@ void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& fi
 
   // Data for the page.
   std::map<std::string, long> cluster_of;
-  const json_value sum = read_json_or_null(s.out / "templates" / "summary.json");
+  const ojson sum = read_json_or_null(s.out / "templates" / "summary.json");
   std::vector<std::vector<std::string>> members(templates.size());
   if (sum.is_object())
-    for (const auto& cl : sum.find("clusters")->as_array()) {
-      const auto t = static_cast<std::size_t>(cl.find("template")->as_number());
-      for (const auto& mname : cl.find("members")->as_array()) {
-        cluster_of[mname.as_string()] = long(t);
-        if (t < members.size()) members[t].push_back(mname.as_string());
+    for (const auto& cl : sum.at("clusters")) {
+      const auto t = static_cast<std::size_t>(cl.at("template").get<double>());
+      for (const auto& mname : cl.at("members")) {
+        cluster_of[mname.get<std::string>()] = long(t);
+        if (t < members.size()) members[t].push_back(mname.get<std::string>());
       }
     }
-  const json_value acc = read_json_or_null(s.out / "evaluate" / "accuracy.json");
+  const ojson acc = read_json_or_null(s.out / "evaluate" / "accuracy.json");
   std::map<std::string, double> shape_acc;
   if (acc.is_object())
-    for (const auto& e : acc.find("per_shape")->as_array())
-      if (const auto* a = e.find("accuracy")) shape_acc[e.find("name")->as_string()] = a->as_number();
+    for (const auto& e : acc.at("per_shape"))
+      if (const auto* a = json_member(e, "accuracy")) shape_acc[e.at("name").get<std::string>()] = a->get<double>();
   const auto [mode, why] = mode_and_reason(s, checks);
-  const json_value col = read_json_or_null(s.out / "fuzzy" / "collection.json");
+  const ojson col = read_json_or_null(s.out / "fuzzy" / "collection.json");
   const auto skipped = collect_skipped(s, checks);
   std::set<long> labels_used;
   for (const auto& t : templates)
@@ -690,22 +688,22 @@ void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& fi
   h << "<h1>Structure of <code>" << html_escape(s.input.string()) << "</code></h1>\n";
   h << "<p>" << checks.size() << " shape files, " << usable << " usable; " << templates.size()
     << " learned template(s); fuzzy correspondences in <b>" << mode << "</b> mode (" << html_escape(why) << ").</p>\n";
-  if (acc.is_object() && acc.find("accuracy")) {
+  if (acc.is_object() && json_member(acc, "accuracy")) {
     h << "<p class=\"big\" id=\"accuracy\">Part-labeling accuracy against the ground truth: <b>"
-      << percent(acc.find("accuracy")->as_number()) << "</b> (" << static_cast<long long>(acc.find("shapes_scored")->as_number())
-      << " shapes; " << html_escape(acc.find("protocol")->as_string()) << "; with a mapping per shape: "
-      << percent(acc.find("accuracy_mapping_per_shape")->as_number()) << ").</p>\n";
+      << percent(acc.at("accuracy").get<double>()) << "</b> (" << static_cast<long long>(acc.at("shapes_scored").get<double>())
+      << " shapes; " << html_escape(acc.at("protocol").get<std::string>()) << "; with a mapping per shape: "
+      << percent(acc.at("accuracy_mapping_per_shape").get<double>()) << ").</p>\n";
   } else {
     h << "<p id=\"accuracy\">No part-label ground truth (no <code>STEM.seg</code> beside the shapes and no "
          "<code>--truth</code>): part-labeling accuracy not measured.</p>\n";
   }
-  const json_value corr = read_json_or_null(s.out / "evaluate" / "correspondence.json");
-  if (corr.is_object() && corr.find("within_0.25")) {
+  const ojson corr = read_json_or_null(s.out / "evaluate" / "correspondence.json");
+  if (corr.is_object() && json_member(corr, "within_0.25")) {
     h << "<p class=\"big\" id=\"correspondence-accuracy\">Correspondence accuracy against the ground-truth feature "
-         "points: <b>" << percent(corr.find("within_0.25")->as_number()) << "</b> within 0.25 &radic;area (within 0.10: "
-      << percent(corr.find("within_0.10")->as_number()) << "; mean error " << corr.find("mean_error")->as_number()
-      << "; " << static_cast<long long>(corr.find("pairs")->as_number()) << " ordered pairs; "
-      << html_escape(corr.find("protocol")->as_string()) << ").</p>\n";
+         "points: <b>" << percent(corr.at("within_0.25").get<double>()) << "</b> within 0.25 &radic;area (within 0.10: "
+      << percent(corr.at("within_0.10").get<double>()) << "; mean error " << corr.at("mean_error").get<double>()
+      << "; " << corr.at("pairs").get<long long>() << " ordered pairs; "
+      << html_escape(corr.at("protocol").get<std::string>()) << ").</p>\n";
   }
   h << "<p>Files: <a href=\"../manifest.json\">manifest.json</a> (what every file is), "
     << "<a href=\"../templates/templates.json\">templates.json</a>";
@@ -789,11 +787,11 @@ void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& fi
     h << "</table>\n";
   }
   if (col.is_object()) {
-    h << "<h2>Fuzzy correspondences</h2>\n<p>" << static_cast<long long>(col.find("shapes")->as_array().size())
-      << " shapes, " << static_cast<long long>(col.find("pairs_aligned")->as_number()) << " of "
-      << static_cast<long long>(col.find("pairs_total")->as_number()) << " pairs aligned, "
-      << static_cast<long long>(col.find("iterations")->as_number()) << " graph optimisation round(s)"
-      << (col.find("converged")->as_bool() ? " (converged)" : "") << ". Regions of interest, other reference shapes "
+    h << "<h2>Fuzzy correspondences</h2>\n<p>" << static_cast<long long>(col.at("shapes").size())
+      << " shapes, " << static_cast<long long>(col.at("pairs_aligned").get<double>()) << " of "
+      << static_cast<long long>(col.at("pairs_total").get<double>()) << " pairs aligned, "
+      << static_cast<long long>(col.at("iterations").get<double>()) << " graph optimisation round(s)"
+      << (col.at("converged").get<bool>() ? " (converged)" : "") << ". Regions of interest, other reference shapes "
       << "and maps between any two shapes: <code>shapestruct explore</code>.</p>\n";
   }
   h << "<script src=\"../timings.js\"></script>\n<script>\n"
@@ -845,7 +843,7 @@ std::string describe(const std::string& rel) {
 
 /// Every file and folder under OUT (sorted), except the resume caches' and PLY files (listed as folders with a
 /// count), temporaries, manifest.json and the timing files.
-json_value list_outputs(const fs::path& out) {
+ojson list_outputs(const fs::path& out) {
   std::vector<std::string> files;
   std::map<std::string, long long> folders;
   const std::set<std::string> collapsed = {"fuzzy/records", "fuzzy/pairs", "templates/ply"};
@@ -865,11 +863,10 @@ json_value list_outputs(const fs::path& out) {
     files.push_back(rel);
   }
   std::sort(files.begin(), files.end());
-  json_value::array a;
-  for (const auto& f : files) a.emplace_back(json_value::object{{"path", f}, {"what", describe(f)}});
-  for (const auto& [f, n] : folders)
-    a.emplace_back(json_value::object{{"folder", f}, {"files", n}, {"what", describe(f)}});
-  return json_value(std::move(a));
+  auto a = ojson::array();
+  for (const auto& f : files) a.push_back(ojson::object({{"path", f}, {"what", describe(f)}}));
+  for (const auto& [f, n] : folders) a.push_back(ojson::object({{"folder", f}, {"files", n}, {"what", describe(f)}}));
+  return a;
 }
 
 /// timings.json: {"stages": [{"stage", "seconds" (null: not run yet)}]}; the seconds of the run that finished a
@@ -877,20 +874,20 @@ json_value list_outputs(const fs::path& out) {
 struct timings_file {
   std::map<std::string, double> seconds;
   void load(const fs::path& out) {
-    const json_value j = read_json_or_null(out / "timings.json");
+    const ojson j = read_json_or_null(out / "timings.json");
     if (!j.is_object()) return;
-    for (const auto& e : j.find("stages")->as_array())
-      if (e.find("seconds") && e.find("seconds")->is_number()) seconds[e.find("stage")->as_string()] = e.find("seconds")->as_number();
+    for (const auto& e : j.at("stages"))
+      if (json_member(e, "seconds") && json_member(e, "seconds")->is_number()) seconds[e.at("stage").get<std::string>()] = e.at("seconds").get<double>();
   }
   void save(const fs::path& out) const {
-    json_value::array a;
+    auto a = ojson::array();
     for (const char* st : stage_names) {
       const auto it = seconds.find(st);
-      a.emplace_back(json_value::object{{"stage", st}, {"seconds", it == seconds.end() ? json_value(nullptr) : json_value(it->second)}});
+      a.push_back(ojson::object({{"stage", st}, {"seconds", it == seconds.end() ? ojson(nullptr) : ojson(it->second)}}));
     }
-    const json_value j(json_value::object{{"stages", json_value(std::move(a))}});
+    const ojson j = ojson::object({{"stages", std::move(a)}});
     write_json_atomic(out / "timings.json", j);
-    write_atomic(out / "timings.js", "window.SHAPESTRUCT_TIMINGS = " + to_json_string(j, 0) + ";\n");
+    write_atomic(out / "timings.js", "window.SHAPESTRUCT_TIMINGS = " + format_json(j, 0) + ";\n");
   }
 };
 
@@ -939,7 +936,6 @@ int run_analyze(const analyze_command_line& c) {
   auto say = [&](const std::string& m) {
     if (!s.quiet) std::fprintf(stderr, "analyze: %s\n", m.c_str());
   };
-  json_value::array stage_log;
   int stage_no = 0;
   // Runs a stage unless OUT/<stage>/.done exists; .done is written last, atomically, with the stage's status.
   // With several processes, rank 0's view of .done decides for all, and every rank finishes the body (the
@@ -1042,62 +1038,61 @@ int run_analyze(const analyze_command_line& c) {
   // Manifest (the same on every run: no times in it) and the summary on the terminal.
   const auto [mode, why] = mode_and_reason(s, checks);
   const auto skipped = collect_skipped(s, checks);
-  const json_value acc = read_json_or_null(s.out / "evaluate" / "accuracy.json");
-  json_value::array stages;
+  const ojson acc = read_json_or_null(s.out / "evaluate" / "accuracy.json");
+  auto stages = ojson::array();
   for (const char* st : stage_names) {
     std::string status = "not run (no ground truth)";
     std::ifstream in(s.out / st / ".done");
     if (in) std::getline(in, status);
-    stages.emplace_back(json_value::object{{"stage", st}, {"folder", std::string(st) + "/"}, {"status", status}});
+    stages.push_back(ojson::object({{"stage", st}, {"folder", std::string(st) + "/"}, {"status", status}}));
   }
-  json_value::array skipped_json;
+  auto skipped_json = ojson::array();
   for (const auto& k : skipped)
-    skipped_json.emplace_back(json_value::object{{"shape", k.shape}, {"stage", k.stage}, {"reason", k.reason}});
-  json_value::object manifest{
-      {"tool", json_value("shapestruct analyze")},
-      {"input", json_value(s.input.string())},
-      {"shape_files", json_value(static_cast<long long>(all_files.size()))},
-      {"usable_shapes", json_value(static_cast<long long>(usable.size()))},
-      {"stages", json_value(std::move(stages))},
-      {"stage_seconds", json_value("in timings.json (kept apart so that every other file is the same on every run)")},
-      {"fuzzy_mode", json_value(mode)},
-      {"fuzzy_mode_reason", json_value(why)},
-      {"skipped", json_value(std::move(skipped_json))}};
-  if (acc.is_object() && acc.find("accuracy"))
-    manifest.emplace_back("accuracy", json_value(json_value::object{{"value", acc.find("accuracy")->as_number()},
-                                                                     {"shapes", acc.find("shapes_scored")->as_number()},
-                                                                     {"truth", acc.find("truth")->as_string()},
-                                                                     {"protocol", acc.find("protocol")->as_string()},
-                                                                     {"details", "evaluate/accuracy.json"}}));
+    skipped_json.push_back(ojson::object({{"shape", k.shape}, {"stage", k.stage}, {"reason", k.reason}}));
+  auto manifest = ojson::object({
+      {"tool", "shapestruct analyze"},
+      {"input", s.input.string()},
+      {"shape_files", static_cast<long long>(all_files.size())},
+      {"usable_shapes", static_cast<long long>(usable.size())},
+      {"stages", std::move(stages)},
+      {"stage_seconds", "in timings.json (kept apart so that every other file is the same on every run)"},
+      {"fuzzy_mode", mode},
+      {"fuzzy_mode_reason", why},
+      {"skipped", std::move(skipped_json)}});
+  if (acc.is_object() && json_member(acc, "accuracy"))
+    manifest["accuracy"] = ojson::object({{"value", acc.at("accuracy").get<double>()},
+                                          {"shapes", acc.at("shapes_scored")},
+                                          {"truth", acc.at("truth").get<std::string>()},
+                                          {"protocol", acc.at("protocol").get<std::string>()},
+                                          {"details", "evaluate/accuracy.json"}});
   else
-    manifest.emplace_back("accuracy", json_value(nullptr));
-  const json_value corr = read_json_or_null(s.out / "evaluate" / "correspondence.json");
-  const bool corr_scored = corr.is_object() && corr.find("within_0.25");
+    manifest["accuracy"] = nullptr;
+  const ojson corr = read_json_or_null(s.out / "evaluate" / "correspondence.json");
+  const bool corr_scored = corr.is_object() && json_member(corr, "within_0.25");
   if (corr_scored)
-    manifest.emplace_back("correspondence_accuracy",
-                          json_value(json_value::object{{"within_0.25", corr.find("within_0.25")->as_number()},
-                                                        {"mean_error", corr.find("mean_error")->as_number()},
-                                                        {"pairs", corr.find("pairs")->as_number()},
-                                                        {"details", "evaluate/correspondence.json"}}));
+    manifest["correspondence_accuracy"] = ojson::object({{"within_0.25", corr.at("within_0.25").get<double>()},
+                                                         {"mean_error", corr.at("mean_error").get<double>()},
+                                                         {"pairs", corr.at("pairs")},
+                                                         {"details", "evaluate/correspondence.json"}});
   else
-    manifest.emplace_back("correspondence_accuracy", json_value(nullptr));
-  manifest.emplace_back("report", "report/index.html");
-  manifest.emplace_back("files", list_outputs(s.out));
-  write_json_atomic(s.out / "manifest.json", json_value(std::move(manifest)));
+    manifest["correspondence_accuracy"] = nullptr;
+  manifest["report"] = "report/index.html";
+  manifest["files"] = list_outputs(s.out);
+  write_json_atomic(s.out / "manifest.json", manifest);
   if (!fs::exists(s.out / "timings.json")) timings.save(s.out);
 
   std::printf("analyze: %zu shapes (%zu usable), fuzzy mode %s; %.1f s this run\n", all_files.size(), usable.size(),
               mode.c_str(), since(t_run));
-  if (acc.is_object() && acc.find("accuracy"))
+  if (acc.is_object() && json_member(acc, "accuracy"))
     std::printf("accuracy: %.2f %% part-labeling accuracy against the ground truth (%lld shapes)\n",
-                100.0 * acc.find("accuracy")->as_number(), static_cast<long long>(acc.find("shapes_scored")->as_number()));
+                100.0 * acc.at("accuracy").get<double>(), static_cast<long long>(acc.at("shapes_scored").get<double>()));
   else if (!corr_scored)
     std::printf("accuracy: not measured (no ground truth)\n");
   if (corr_scored)
     std::printf("accuracy: %.1f %% of feature points carried within 0.25 sqrt(area) by the fuzzy correspondences, "
                 "mean error %.3f (%lld ordered pairs)\n",
-                100.0 * corr.find("within_0.25")->as_number(), corr.find("mean_error")->as_number(),
-                static_cast<long long>(corr.find("pairs")->as_number()));
+                100.0 * corr.at("within_0.25").get<double>(), corr.at("mean_error").get<double>(),
+                corr.at("pairs").get<long long>());
   std::printf("report: %s\n", (s.out / "report" / "index.html").string().c_str());
   std::printf("manifest: %s\n", (s.out / "manifest.json").string().c_str());
   std::printf("explore: shapestruct explore %s\n", (s.out / "fuzzy").string().c_str());

@@ -23,7 +23,7 @@
 #include "shapestruct/fuzzy/fuzzy_maps.hpp"
 #include "shapestruct/fuzzy/fuzzy_output.hpp"
 #include "shapestruct/fuzzy/intrinsic_alignment.hpp"
-#include "shapestruct/io/json.hpp"
+#include "shapestruct/io/json_file.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/io/vertex_map_file.hpp"
 #include "shapestruct/templates/collection_runner.hpp"
@@ -164,11 +164,11 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
   }
   bar.finish();
   const double seconds_fuzzy = since(t_fuzzy);
-  json_value::array disconnected;
+  auto disconnected = nlohmann::ordered_json::array();
   for (const index_t k : r.disconnected) {
     if (writer) std::fprintf(stderr, "fuzzy: %s is not connected to the rest of the collection: every alignment to it was "
                  "rejected, so its correspondences to the others mean nothing\n", col.files[std::size_t(k)].string().c_str());
-    disconnected.push_back(json_value(col.records[std::size_t(k)].name));
+    disconnected.push_back(col.records[std::size_t(k)].name);
   }
 
   // 3. Outputs.
@@ -217,16 +217,16 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
            to_string(it.embedding_info) + "\n";
     io_detail::write_file_atomically(out_dir / "iterations.tsv", s);
   }
-  json_value::array shapes, skipped;
+  using ojson = nlohmann::ordered_json;
+  auto shapes = ojson::array(), skipped = ojson::array();
   for (std::size_t k = 0; k < col.records.size(); ++k)
-    shapes.push_back(json_value(json_value::object{{"name", col.records[k].name},
-                                                   {"file", fs::absolute(col.files[k]).string()},
-                                                   {"vertices", static_cast<long long>(col.records[k].vertex_count)},
-                                                   {"closed_genus0", col.records[k].closed_genus0}}));
-  for (const auto& s : col.skipped)
-    skipped.push_back(json_value(json_value::object{{"file", s.file.string()}, {"reason", s.reason}}));
+    shapes.push_back(ojson::object({{"name", col.records[k].name},
+                                    {"file", fs::absolute(col.files[k]).string()},
+                                    {"vertices", static_cast<long long>(col.records[k].vertex_count)},
+                                    {"closed_genus0", col.records[k].closed_genus0}}));
+  for (const auto& s : col.skipped) skipped.push_back(ojson::object({{"file", s.file.string()}, {"reason", s.reason}}));
   const std::size_t N = col.records.size();
-  json_value manifest(json_value::object{
+  ojson manifest = ojson::object({
       {"mode", intrinsic ? "intrinsic" : "extrinsic"},
       {"samples", static_cast<long long>(o.samples)},
       {"shapes", shapes},
@@ -237,8 +237,8 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
       {"iterations", static_cast<long long>(r.log.size() - 1)},
       {"converged", r.converged}});
   if (o.timings_in_results)
-    manifest.set("seconds", json_value(json_value::object{{"records", t_records}, {"fuzzy", seconds_fuzzy}, {"total", since(t_start)}}));
-  write_json((out_dir / "collection.json").string(), manifest);
+    manifest["seconds"] = ojson::object({{"records", t_records}, {"fuzzy", seconds_fuzzy}, {"total", since(t_start)}});
+  write_json_file((out_dir / "collection.json").string(), manifest);
   if (!o.quiet)
     std::fprintf(stderr,
                  "fuzzy: %zu shapes, %zu of %zu pairs aligned (%.1f %%), %zu iterations%s, %.1f s; wrote %s\n", N,

@@ -15,7 +15,7 @@
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/generate/assembly_generator.hpp"
 #include "shapestruct/generate/creature_generator.hpp"
-#include "shapestruct/io/json.hpp"
+#include "shapestruct/io/json_file.hpp"
 #include "shapestruct/io/segmentation_file.hpp"
 #include "shapestruct/io/write_mesh.hpp"
 
@@ -75,9 +75,9 @@ void write_sym(const fs::path& path, const creature<double>& c) {
   write_text(path, out);
 }
 
-json_value names_json(std::span<const char* const> names) {
-  json_value::array a;
-  for (const char* n : names) a.emplace_back(n);
+nlohmann::ordered_json names_json(std::span<const char* const> names) {
+  auto a = nlohmann::ordered_json::array();
+  for (const char* n : names) a.push_back(n);
   return a;
 }
 
@@ -123,30 +123,31 @@ int run_generate(const generate_options& o) {
   }
 
   const auto t0 = std::chrono::steady_clock::now();
-  json_value::object manifest;
-  manifest.emplace_back("kind", kind);
-  manifest.emplace_back("seed", static_cast<double>(seed));
-  manifest.emplace_back("first", static_cast<double>(first));
-  manifest.emplace_back("count", static_cast<double>(count));
-  manifest.emplace_back("format", format);
-  manifest.emplace_back("up", "+y");
-  manifest.emplace_back("front", "-z");
-  manifest.emplace_back("left", "-x");
-  json_value::object label_names;
-  json_value::array shapes;
+  using ojson = nlohmann::ordered_json;  // keys are written in insertion order
+  ojson manifest = ojson::object();
+  manifest["kind"] = kind;
+  manifest["seed"] = static_cast<long long>(seed);
+  manifest["first"] = static_cast<long long>(first);
+  manifest["count"] = static_cast<long long>(count);
+  manifest["format"] = format;
+  manifest["up"] = "+y";
+  manifest["front"] = "-z";
+  manifest["left"] = "-x";
+  ojson label_names = ojson::object();
+  ojson shapes = ojson::array();
   const auto useed = static_cast<std::uint64_t>(seed), ufirst = static_cast<std::uint64_t>(first);
   const auto nthreads = static_cast<unsigned>(threads);
   // Shapes are generated in parallel chunks and written in order, so memory stays bounded for large N.
   const std::size_t chunk = 64;
   if (creatures) {
     const creature_generator<double> gen(useed, {.threads = nthreads});
-    label_names.emplace_back("creature", names_json(creature_part_names));
+    label_names["creature"] = names_json(creature_part_names);
     const auto canon = gen.canonical();
     write_mesh(dir / ("canonical." + format), canon.mesh);
     write_corr(dir / "canonical.corr", canon);
     write_labels(dir / "canonical.seg", canon.face_labels);
-    manifest.emplace_back("canonical", json_value::object{{"mesh", "canonical." + format}, {"corr", "canonical.corr"},
-                                                          {"seg", "canonical.seg"}});
+    manifest["canonical"] = ojson::object({{"mesh", "canonical." + format}, {"corr", "canonical.corr"},
+                                           {"seg", "canonical.seg"}});
     for (long long done = 0; done < count; done += static_cast<long long>(chunk)) {
       const std::size_t n = static_cast<std::size_t>(std::min<long long>(static_cast<long long>(chunk), count - done));
       const auto batch = gen.generate_range(ufirst + static_cast<std::uint64_t>(done), n, nthreads);
@@ -159,25 +160,25 @@ int run_generate(const generate_options& o) {
         write_points(dir / (stem + ".pts"), c.features);
         write_corr(dir / (stem + ".corr"), c);
         write_sym(dir / (stem + ".sym"), c);
-        json_value::array limbs;
+        ojson limbs = ojson::array();
         for (int s = 0; s < creature_slot_count; ++s)
-          if (c.has_slot[static_cast<std::size_t>(s)]) limbs.emplace_back(creature_slot_tip_names[static_cast<std::size_t>(s)]);
-        shapes.emplace_back(json_value::object{{"index", static_cast<double>(index)},
-                                               {"class", "creature"},
-                                               {"mesh", stem + "." + format},
-                                               {"seg", stem + ".seg"},
-                                               {"pts", stem + ".pts"},
-                                               {"corr", stem + ".corr"},
-                                               {"sym", stem + ".sym"},
-                                               {"vertices", static_cast<double>(c.mesh.num_vertices())},
-                                               {"faces", static_cast<double>(c.mesh.num_faces())},
-                                               {"limb_tips", limbs}});
+          if (c.has_slot[static_cast<std::size_t>(s)]) limbs.push_back(creature_slot_tip_names[static_cast<std::size_t>(s)]);
+        shapes.push_back(ojson::object({{"index", index},
+                                        {"class", "creature"},
+                                        {"mesh", stem + "." + format},
+                                        {"seg", stem + ".seg"},
+                                        {"pts", stem + ".pts"},
+                                        {"corr", stem + ".corr"},
+                                        {"sym", stem + ".sym"},
+                                        {"vertices", static_cast<long long>(c.mesh.num_vertices())},
+                                        {"faces", static_cast<long long>(c.mesh.num_faces())},
+                                        {"limb_tips", std::move(limbs)}}));
       }
     }
   } else {
     const assembly_generator<double> gen(akind, useed, {.threads = nthreads});
     for (const auto k : {assembly_kind::chair, assembly_kind::table, assembly_kind::airplane})
-      if (!akind || *akind == k) label_names.emplace_back(to_string(k), names_json(assembly_label_names(k)));
+      if (!akind || *akind == k) label_names[std::string(to_string(k))] = names_json(assembly_label_names(k));
     for (long long done = 0; done < count; done += static_cast<long long>(chunk)) {
       const std::size_t n = static_cast<std::size_t>(std::min<long long>(static_cast<long long>(chunk), count - done));
       const auto batch = gen.generate_range(ufirst + static_cast<std::uint64_t>(done), n, nthreads);
@@ -188,20 +189,20 @@ int run_generate(const generate_options& o) {
         write_mesh(dir / (stem + "." + format), a.mesh);
         write_labels(dir / (stem + ".seg"), a.face_labels);
         write_points(dir / (stem + ".pts"), a.features);
-        shapes.emplace_back(json_value::object{{"index", static_cast<double>(index)},
-                                               {"class", to_string(a.kind)},
-                                               {"mesh", stem + "." + format},
-                                               {"seg", stem + ".seg"},
-                                               {"pts", stem + ".pts"},
-                                               {"vertices", static_cast<double>(a.mesh.num_vertices())},
-                                               {"faces", static_cast<double>(a.mesh.num_faces())},
-                                               {"parts", static_cast<double>(a.parts.size())}});
+        shapes.push_back(ojson::object({{"index", index},
+                                        {"class", to_string(a.kind)},
+                                        {"mesh", stem + "." + format},
+                                        {"seg", stem + ".seg"},
+                                        {"pts", stem + ".pts"},
+                                        {"vertices", static_cast<long long>(a.mesh.num_vertices())},
+                                        {"faces", static_cast<long long>(a.mesh.num_faces())},
+                                        {"parts", static_cast<long long>(a.parts.size())}}));
       }
     }
   }
-  manifest.emplace_back("label_names", label_names);
-  manifest.emplace_back("shapes", shapes);
-  write_json((dir / "collection.json").string(), manifest);
+  manifest["label_names"] = std::move(label_names);
+  manifest["shapes"] = std::move(shapes);
+  write_json_file((dir / "collection.json").string(), manifest);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::cout << "wrote " << count << " " << kind << " to " << dir.string() << " in " << number(seconds) << " s ("
             << number(static_cast<double>(count) / seconds) << " shapes/s, files included)\n";

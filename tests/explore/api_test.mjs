@@ -27,7 +27,7 @@ function run(...argv) {
 }
 
 if (spawnSync(cli, ['explore', '--help'], { encoding: 'utf8' }).status !== 0) {
-  console.log('SHAPESTRUCT_SKIP: this shapestruct was built without `explore` (cpp-httplib or nlohmann-json missing)');
+  console.log('SHAPESTRUCT_SKIP: this shapestruct was built without `explore` (cpp-httplib missing)');
   process.exit(0);
 }
 

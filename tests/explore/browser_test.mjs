@@ -217,7 +217,7 @@ async function main() {
     let chairsDir = null;
     const timings = {};
     if (!baseUrl) {
-      // A tool configured without cpp-httplib / nlohmann-json has no explore command (CMake said so).
+      // A tool configured without cpp-httplib has no explore command (CMake said so).
       const help = spawnSync(args.cli, ['explore', '--help'], { encoding: 'utf8' });
       if (/unknown command/.test(`${help.stdout}${help.stderr}`)) skip(`${args.cli} was built without 'explore'`);
       chairsDir = path.join(args.work, 'chairs');

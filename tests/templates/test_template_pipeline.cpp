@@ -151,7 +151,7 @@ TEST_CASE("learn_templates moves the template towards the collection, initialize
   const auto one = learn_templates({t}, shapes, lo);
   lo.threads = 2;
   const auto two = learn_templates({t}, shapes, lo);
-  CHECK(to_json_string(template_to_json(one.templates[0])) == to_json_string(template_to_json(two.templates[0])));
+  CHECK(format_json(template_to_json(one.templates[0])) == format_json(template_to_json(two.templates[0])));
   const auto [auto_t, e] = template_from_shape(shapes[0], {.parts = 4});
   // One box per merged cell; congruent cells (legs) share a label, so at most 4 labels.
   CHECK(auto_t.num_parts() >= 1);

@@ -9,7 +9,7 @@
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/fuzzy/fuzzy_correspondence.hpp"
 #include "shapestruct/fuzzy/fuzzy_files.hpp"
-#include "shapestruct/io/json.hpp"
+#include "shapestruct/io/json_file.hpp"
 
 namespace shapestruct {
 
@@ -35,22 +35,21 @@ struct fuzzy_output {
       throw io_error(file_error::cannot_open, (folder / needed).string(), 0, 0,
                      std::string("missing: ") + needed + " (is this the output folder of `shapestruct fuzzy`?)");
   const std::string manifest_path = (folder / "collection.json").string();
-  const json_value manifest = read_json(manifest_path);
-  const json_value* mode = manifest.find("mode");
-  const json_value* shapes = manifest.find("shapes");
-  if (mode == nullptr || shapes == nullptr)
+  const nlohmann::ordered_json manifest = read_json_file(manifest_path);
+  const auto* shapes = json_member(manifest, "shapes");
+  if (json_member(manifest, "mode") == nullptr || shapes == nullptr)
     throw io_error(file_error::syntax, manifest_path, 0, 0, "has no \"mode\" or no \"shapes\"");
-  out.mode = mode->as_string();
-  for (const auto& s : shapes->as_array()) {
-    const json_value* name = s.find("name");
-    const json_value* file = s.find("file");
-    if (name == nullptr || file == nullptr)
+  out.mode = json_required<std::string>(manifest, "mode", manifest_path);
+  if (!shapes->is_array()) throw io_error(file_error::bad_value, manifest_path, 0, 0, "\"shapes\" must be an array");
+  for (const auto& s : *shapes) {
+    if (json_member(s, "name") == nullptr || json_member(s, "file") == nullptr)
       throw io_error(file_error::syntax, manifest_path, 0, 0, "a shape without \"name\" or \"file\"");
-    const fs::path record = folder / "records" / (name->as_string() + ".rec");
+    const auto name = json_required<std::string>(s, "name", manifest_path);
+    const fs::path record = folder / "records" / (name + ".rec");
     if (!fs::is_regular_file(record))
-      throw io_error(file_error::cannot_open, record.string(), 0, 0, "missing: the record of shape '" + name->as_string() + "'");
+      throw io_error(file_error::cannot_open, record.string(), 0, 0, "missing: the record of shape '" + name + "'");
     out.records.push_back(read_shape_record(record));
-    out.files.emplace_back(file->as_string());
+    out.files.emplace_back(json_required<std::string>(s, "file", manifest_path));
   }
   out.fuzzy = read_fuzzy_correspondence(folder / "fuzzy.bin");
   if (out.fuzzy.shapes() != out.shapes())

@@ -23,7 +23,7 @@
 
 #include "shapestruct/core/work_share.hpp"
 #include "shapestruct/detail/parallel_for.hpp"
-#include "shapestruct/io/json.hpp"
+#include "shapestruct/io/json_file.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/io/segmentation_file.hpp"
 #include "shapestruct/io/write_mesh.hpp"
@@ -164,7 +164,7 @@ inline std::pair<triangle_mesh<double>, Eigen::Matrix<std::uint8_t, Eigen::Dynam
   return {m, col};
 }
 
-inline json_value vec_json(const Eigen::Vector3d& v) { return json_value(json_value::array{v[0], v[1], v[2]}); }
+inline nlohmann::ordered_json vec_json(const Eigen::Vector3d& v) { return nlohmann::ordered_json::array({v[0], v[1], v[2]}); }
 
 }  // namespace detail
 
@@ -273,8 +273,7 @@ inline collection_run_summary run_template_collection(const std::vector<std::fil
     const fs::path rec = out_dir / (stem + ".fit.json");
     if (fs::exists(rec)) {
       try {
-        const json_value r = read_json(rec.string());
-        cluster[i] = static_cast<index_t>(r.find("template")->as_number());
+        cluster[i] = json_required<index_t>(read_json_file(rec.string()), "template", rec.string());
       } catch (const std::exception&) {
         cluster[i] = no_index;
       }
@@ -325,24 +324,25 @@ inline collection_run_summary run_template_collection(const std::vector<std::fil
         const auto [bm, bc] = detail::boxes_mesh(tp, f, s);
         write_mesh(out_dir / "ply" / (stem + ".boxes.ply"), bm, {.vertex_colors = bc, .binary = true});
       }
-      json_value::array parts;
+      using ojson = nlohmann::ordered_json;
+      auto parts = ojson::array();
       for (std::size_t b = 0; b < tp.parts.size(); ++b)
-        parts.push_back(json_value(json_value::object{{"name", json_value(tp.parts[b].name)},
-                                                      {"center", detail::vec_json(f.centers[b])},
-                                                      {"size", detail::vec_json(f.sizes[b])}}));
-      json_value::array rot;
+        parts.push_back(ojson::object({{"name", tp.parts[b].name},
+                                       {"center", detail::vec_json(f.centers[b])},
+                                       {"size", detail::vec_json(f.sizes[b])}}));
+      auto rot = ojson::array();
       for (int r = 0; r < 3; ++r) rot.push_back(detail::vec_json(f.rotation.row(r).transpose()));
-      const json_value record(json_value::object{
-          {"file", json_value(file.filename().string())},
-          {"template", json_value(static_cast<long long>(best.template_index))},
-          {"template_id", json_value(tp.id)},
-          {"energy", std::isfinite(f.energy) ? json_value(f.energy) : json_value(nullptr)},
-          {"status", json_value(to_string(f.info))},
+      const ojson record = ojson::object({
+          {"file", file.filename().string()},
+          {"template", static_cast<long long>(best.template_index)},
+          {"template_id", tp.id},
+          {"energy", std::isfinite(f.energy) ? ojson(f.energy) : ojson(nullptr)},
+          {"status", to_string(f.info)},
           {"canonical_center", detail::vec_json(s.center)},
-          {"canonical_scale", json_value(s.scale)},
-          {"rotation", json_value(std::move(rot))},
-          {"parts", json_value(std::move(parts))}});
-      detail::write_text_atomic(rec, to_json_string(record) + "\n");
+          {"canonical_scale", s.scale},
+          {"rotation", std::move(rot)},
+          {"parts", std::move(parts)}});
+      detail::write_text_atomic(rec, format_json(record) + "\n");
       cluster[i] = best.template_index;
       std::lock_guard<std::mutex> g(lock);
       ++sum.processed;
@@ -376,23 +376,23 @@ inline collection_run_summary run_template_collection(const std::vector<std::fil
     }
   }
   sum.cluster_sizes.assign(templates.size(), 0);
-  json_value::array clusters, bad;
-  std::vector<json_value::array> members(templates.size());
+  using ojson = nlohmann::ordered_json;
+  auto clusters = ojson::array(), bad = ojson::array();
+  std::vector<ojson> members(templates.size(), ojson::array());
   for (std::size_t i = 0; i < files.size(); ++i) {
-    if (failed[i]) bad.push_back(json_value(files[i].filename().string()));
+    if (failed[i]) bad.push_back(files[i].filename().string());
     if (cluster[i] >= 0 && static_cast<std::size_t>(cluster[i]) < templates.size()) {
       ++sum.cluster_sizes[static_cast<std::size_t>(cluster[i])];
-      members[static_cast<std::size_t>(cluster[i])].push_back(json_value(files[i].stem().string()));
+      members[static_cast<std::size_t>(cluster[i])].push_back(files[i].stem().string());
     }
   }
   for (std::size_t t = 0; t < templates.size(); ++t)
-    clusters.push_back(json_value(json_value::object{{"template", json_value(static_cast<long long>(t))},
-                                                     {"id", json_value(templates[t].id)},
-                                                     {"shapes", json_value(static_cast<long long>(sum.cluster_sizes[t]))},
-                                                     {"members", json_value(std::move(members[t]))}}));
-  const json_value summary(json_value::object{{"clusters", json_value(std::move(clusters))},
-                                              {"failed", json_value(std::move(bad))}});
-  if (share.leader()) detail::write_text_atomic(out_dir / opt.summary_name, to_json_string(summary) + "\n");
+    clusters.push_back(ojson::object({{"template", static_cast<long long>(t)},
+                                      {"id", templates[t].id},
+                                      {"shapes", static_cast<long long>(sum.cluster_sizes[t])},
+                                      {"members", std::move(members[t])}}));
+  const ojson summary = ojson::object({{"clusters", std::move(clusters)}, {"failed", std::move(bad)}});
+  if (share.leader()) detail::write_text_atomic(out_dir / opt.summary_name, format_json(summary) + "\n");
   return sum;
 }
 

@@ -14,7 +14,7 @@
 
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/core/types.hpp"
-#include "shapestruct/io/json.hpp"
+#include "shapestruct/io/json_file.hpp"
 
 namespace shapestruct {
 
@@ -115,59 +115,52 @@ inline void validate_template(const part_template& t, const std::string& who = "
 
 namespace detail {
 
-inline json_value json_vec(const Eigen::VectorXd& v) {
-  json_value::array a;
-  for (index_t i = 0; i < v.size(); ++i) a.emplace_back(v[i]);
-  return json_value(std::move(a));
+inline nlohmann::ordered_json json_vec(const Eigen::VectorXd& v) {
+  auto a = nlohmann::ordered_json::array();
+  for (index_t i = 0; i < v.size(); ++i) a.push_back(v[i]);
+  return a;
 }
 
-inline Eigen::VectorXd json_to_vec(const json_value& v, const std::string& what, index_t expected,
+inline Eigen::VectorXd json_to_vec(const nlohmann::ordered_json& a, const std::string& what, index_t expected,
                                    const std::string& path) {
-  if (!v.is_array()) throw io_error(file_error::bad_value, path, 0, 0, what + " must be an array of numbers");
-  const auto& a = v.as_array();
+  if (!a.is_array()) throw io_error(file_error::bad_value, path, 0, 0, what + " must be an array of numbers");
   if (expected >= 0 && static_cast<index_t>(a.size()) != expected)
     throw io_error(file_error::bad_value, path, 0, 0,
                    what + " must have " + std::to_string(expected) + " numbers, found " + std::to_string(a.size()));
   Eigen::VectorXd out(static_cast<index_t>(a.size()));
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (!a[i].is_number()) throw io_error(file_error::bad_value, path, 0, 0, what + " must contain only numbers");
-    out[static_cast<index_t>(i)] = a[i].as_number();
+    out[static_cast<index_t>(i)] = a[i].get<double>();
   }
   return out;
 }
 
 }  // namespace detail
 
-// See io/json.hpp: GCC 12 false positives on the recursive variant, reported through the inlining stack.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Warray-bounds"
-#pragma GCC diagnostic ignored "-Wstringop-overflow"
-#endif
-
 /// The template as a JSON object (see docs/part_templates.md for the schema). O(parts x features).
-inline json_value template_to_json(const part_template& t) {
-  // Built from an initializer list: GCC 12 reports a false -Warray-bounds on emplace_back into an empty
-  // vector of this recursive pair type.
-  json_value::object o{{"id", json_value(t.id)}, {"up_axis", json_value(t.up_axis)}};
-  json_value::array parts;
+inline nlohmann::ordered_json template_to_json(const part_template& t) {
+  nlohmann::ordered_json o;  // ordered: keys are written in this order
+  o["id"] = t.id;
+  o["up_axis"] = t.up_axis;
+  auto parts = nlohmann::ordered_json::array();
   for (const auto& b : t.parts) {
-    json_value::object p{{"name", json_value(b.name)}};
-    p.emplace_back("label", static_cast<long long>(b.label));
-    p.emplace_back("center", detail::json_vec(b.center));
-    json_value::array axes;
+    nlohmann::ordered_json p;
+    p["name"] = b.name;
+    p["label"] = static_cast<long long>(b.label);
+    p["center"] = detail::json_vec(b.center);
+    auto axes = nlohmann::ordered_json::array();
     for (int r = 0; r < 3; ++r) axes.push_back(detail::json_vec(b.axes.row(r).transpose()));
-    p.emplace_back("axes", json_value(std::move(axes)));
-    p.emplace_back("size", detail::json_vec(b.size));
-    p.emplace_back("sigma_center", detail::json_vec(b.sigma_center));
-    p.emplace_back("sigma_size", detail::json_vec(b.sigma_size));
-    p.emplace_back("feature_mean", detail::json_vec(b.feature_mean));
-    p.emplace_back("feature_sigma", detail::json_vec(b.feature_sigma));
-    p.emplace_back("must_exist", b.must_exist);
-    parts.emplace_back(json_value(std::move(p)));
+    p["axes"] = std::move(axes);
+    p["size"] = detail::json_vec(b.size);
+    p["sigma_center"] = detail::json_vec(b.sigma_center);
+    p["sigma_size"] = detail::json_vec(b.sigma_size);
+    p["feature_mean"] = detail::json_vec(b.feature_mean);
+    p["feature_sigma"] = detail::json_vec(b.feature_sigma);
+    p["must_exist"] = b.must_exist;
+    parts.push_back(std::move(p));
   }
-  o.emplace_back("parts", json_value(std::move(parts)));
-  return json_value(std::move(o));
+  o["parts"] = std::move(parts);
+  return o;
 }
 
 /// Builds a template from its JSON object. Optional keys take part_box's defaults ("axes" identity, sigmas 0.05,
@@ -175,48 +168,48 @@ inline json_value template_to_json(const part_template& t) {
 /// 1e-3 of orthonormal (a few written decimals) are snapped to the nearest orthonormal matrix. The result is
 /// validated (validate_template), so a template with no parts or inconsistent dimensions is rejected.
 /// \throws io_error bad_value naming `path` and the offending key; invalid_input from validate_template.
-inline part_template template_from_json(const json_value& v, const std::string& path = {}) {
+inline part_template template_from_json(const nlohmann::ordered_json& v, const std::string& path = {}) {
   if (!v.is_object()) throw io_error(file_error::bad_value, path, 0, 0, "a template must be a JSON object");
   part_template t;
-  if (const auto* id = v.find("id")) {
+  if (const auto* id = json_member(v, "id")) {
     if (!id->is_string()) throw io_error(file_error::bad_value, path, 0, 0, "\"id\" must be a string");
-    t.id = id->as_string();
+    t.id = id->get<std::string>();
   }
-  if (const auto* up = v.find("up_axis")) {
-    if (!up->is_number() || std::floor(up->as_number()) != up->as_number())
+  if (const auto* up = json_member(v, "up_axis")) {
+    if (!up->is_number() || std::floor(up->get<double>()) != up->get<double>())
       throw io_error(file_error::bad_value, path, 0, 0, "\"up_axis\" must be an integer");
-    t.up_axis = static_cast<int>(up->as_number());
+    t.up_axis = static_cast<int>(up->get<double>());
   }
-  const auto* parts = v.find("parts");
+  const auto* parts = json_member(v, "parts");
   if (parts == nullptr || !parts->is_array())
     throw io_error(file_error::bad_value, path, 0, 0, "template '" + t.id + "' needs a \"parts\" array");
-  const auto& arr = parts->as_array();
+  const auto& arr = *parts;
   for (std::size_t i = 0; i < arr.size(); ++i) {
-    const json_value& p = arr[i];
+    const nlohmann::ordered_json& p = arr[i];
     const std::string where = "part " + std::to_string(i);
     if (!p.is_object()) throw io_error(file_error::bad_value, path, 0, 0, where + " must be an object");
     part_box b;
     b.label = static_cast<index_t>(i);
-    if (const auto* n = p.find("name")) {
+    if (const auto* n = json_member(p, "name")) {
       if (!n->is_string()) throw io_error(file_error::bad_value, path, 0, 0, where + ": \"name\" must be a string");
-      b.name = n->as_string();
+      b.name = n->get<std::string>();
     }
-    if (const auto* l = p.find("label")) {
-      if (!l->is_number() || std::floor(l->as_number()) != l->as_number())
+    if (const auto* l = json_member(p, "label")) {
+      if (!l->is_number() || std::floor(l->get<double>()) != l->get<double>())
         throw io_error(file_error::bad_value, path, 0, 0, where + ": \"label\" must be an integer");
-      b.label = static_cast<index_t>(l->as_number());
+      b.label = static_cast<index_t>(l->get<double>());
     }
-    const auto* c = p.find("center");
-    const auto* s = p.find("size");
+    const auto* c = json_member(p, "center");
+    const auto* s = json_member(p, "size");
     if (c == nullptr || s == nullptr)
       throw io_error(file_error::bad_value, path, 0, 0, where + " needs \"center\" and \"size\"");
     b.center = detail::json_to_vec(*c, where + ": \"center\"", 3, path);
     b.size = detail::json_to_vec(*s, where + ": \"size\"", 3, path);
-    if (const auto* a = p.find("axes")) {
-      if (!a->is_array() || a->as_array().size() != 3)
+    if (const auto* a = json_member(p, "axes")) {
+      if (!a->is_array() || a->size() != 3)
         throw io_error(file_error::bad_value, path, 0, 0, where + ": \"axes\" must be 3 rows of 3 numbers");
       for (int r = 0; r < 3; ++r)
-        b.axes.row(r) = detail::json_to_vec(a->as_array()[static_cast<std::size_t>(r)], where + ": \"axes\" row", 3,
+        b.axes.row(r) = detail::json_to_vec((*a)[static_cast<std::size_t>(r)], where + ": \"axes\" row", 3,
                                             path)
                             .transpose();
       // Hand-written axes carry a few decimals ([0.7071, 0, 0.7071]): snap rows within 1e-3 of orthonormal to
@@ -228,13 +221,13 @@ inline part_template template_from_json(const json_value& v, const std::string& 
         b.axes = svd.matrixU() * svd.matrixV().transpose();
       }
     }
-    if (const auto* x = p.find("sigma_center")) b.sigma_center = detail::json_to_vec(*x, where + ": \"sigma_center\"", 3, path);
-    if (const auto* x = p.find("sigma_size")) b.sigma_size = detail::json_to_vec(*x, where + ": \"sigma_size\"", 3, path);
-    if (const auto* x = p.find("feature_mean")) b.feature_mean = detail::json_to_vec(*x, where + ": \"feature_mean\"", -1, path);
-    if (const auto* x = p.find("feature_sigma")) b.feature_sigma = detail::json_to_vec(*x, where + ": \"feature_sigma\"", -1, path);
-    if (const auto* x = p.find("must_exist")) {
-      if (!x->is_bool()) throw io_error(file_error::bad_value, path, 0, 0, where + ": \"must_exist\" must be true or false");
-      b.must_exist = x->as_bool();
+    if (const auto* x = json_member(p, "sigma_center")) b.sigma_center = detail::json_to_vec(*x, where + ": \"sigma_center\"", 3, path);
+    if (const auto* x = json_member(p, "sigma_size")) b.sigma_size = detail::json_to_vec(*x, where + ": \"sigma_size\"", 3, path);
+    if (const auto* x = json_member(p, "feature_mean")) b.feature_mean = detail::json_to_vec(*x, where + ": \"feature_mean\"", -1, path);
+    if (const auto* x = json_member(p, "feature_sigma")) b.feature_sigma = detail::json_to_vec(*x, where + ": \"feature_sigma\"", -1, path);
+    if (const auto* x = json_member(p, "must_exist")) {
+      if (!x->is_boolean()) throw io_error(file_error::bad_value, path, 0, 0, where + ": \"must_exist\" must be true or false");
+      b.must_exist = x->get<bool>();
     }
     t.parts.push_back(std::move(b));
   }
@@ -246,12 +239,11 @@ inline part_template template_from_json(const json_value& v, const std::string& 
 /// \throws io_error (cannot_open, syntax with line:column, bad_value naming the key) and invalid_input
 /// (validate_template, the message names the file). O(file size).
 inline std::vector<part_template> read_templates(const std::string& path) {
-  const json_value doc = read_json(path);
+  const nlohmann::ordered_json doc = read_json_file(path);
   std::vector<part_template> out;
-  if (doc.is_object() && doc.find("templates") != nullptr) {
-    const json_value& arr = *doc.find("templates");
-    if (!arr.is_array()) throw io_error(file_error::bad_value, path, 0, 0, "\"templates\" must be an array");
-    for (const auto& t : arr.as_array()) out.push_back(template_from_json(t, path));
+  if (const auto* arr = json_member(doc, "templates")) {
+    if (!arr->is_array()) throw io_error(file_error::bad_value, path, 0, 0, "\"templates\" must be an array");
+    for (const auto& t : *arr) out.push_back(template_from_json(t, path));
     if (out.empty()) throw io_error(file_error::bad_value, path, 0, 0, "\"templates\" is empty");
   } else {
     out.push_back(template_from_json(doc, path));
@@ -261,14 +253,11 @@ inline std::vector<part_template> read_templates(const std::string& path) {
 
 /// Writes a template set as {"templates": [...]}. \throws io_error cannot_open / write_failed.
 inline void write_templates(const std::string& path, const std::vector<part_template>& ts) {
-  json_value::array arr;
+  auto arr = nlohmann::ordered_json::array();
   for (const auto& t : ts) arr.push_back(template_to_json(t));
-  json_value::object o{{"templates", json_value(std::move(arr))}};
-  write_json(path, json_value(std::move(o)));
+  nlohmann::ordered_json o;
+  o["templates"] = std::move(arr);
+  write_json_file(path, o);
 }
-
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
 
 }  // namespace shapestruct
