@@ -1126,20 +1126,23 @@ cli::command_fn setup_analyze(CLI::App& app) {
       "  inspect/    check_mesh's report per shape file (FILE.json) and summary.json; an unreadable, empty or\n"
       "              non-finite shape is reported and skipped by the later stages\n"
       "  templates/  exactly what `shapestruct templates` writes (learned templates, STEM.seg, co-alignment)\n"
-      "  evaluate/   with ground truth (the generator's STEM.seg beside the shapes, or --truth DIR):\n"
-      "              accuracy.json, the part-labeling accuracy of the templates (also printed)\n"
       "  fuzzy/      what `shapestruct fuzzy` writes (its timings go to OUT/timings.json instead)\n"
+      "  evaluate/   with ground truth beside the shapes or in --truth DIR: per-face labels STEM.seg (the\n"
+      "              generator's) give accuracy.json, the part-labeling accuracy of the templates; feature\n"
+      "              points STEM.vts / STEM.pid (SHREC'07, SCAPE) give correspondence.json, the error of the\n"
+      "              fuzzy correspondences (geodesic / sqrt(area)); both printed\n"
       "  report/     index.html: opens from disk without a server; PNG thumbnails rendered by the tool\n"
       "and OUT/manifest.json (every file and what it is, stages, mode, skipped shapes, accuracy) and\n"
       "OUT/timings.json (seconds per stage). Each stage ends by writing OUT/STAGE/.done: run the same command\n"
       "again after an interruption and finished stages (and finished shapes and pairs) are not redone; the\n"
-      "result files are the same as those of an uninterrupted run. See docs/analyze.md.");
+      "result files are the same as those of an uninterrupted run. Across MPI ranks: mpirun -np R\n"
+      "shapestruct-mpi analyze ... (docs/cluster.md). See docs/analyze.md.");
   return [c] { return run_analyze(*c); };
 }
 
 const cli::register_command reg{
     "analyze",
-    {"the structure of a folder of shapes in one command: check, templates, accuracy, fuzzy correspondences, report",
+    {"the structure of a folder of shapes in one command: check, templates, fuzzy correspondences, accuracy, report",
      setup_analyze}};
 
 }  // namespace
