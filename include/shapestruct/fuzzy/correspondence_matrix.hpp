@@ -26,7 +26,7 @@ struct correspondence_edge {
   const Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>* scores = nullptr;
 };
 
-/// The correspondence matrix of a collection (eq. 4.6), stored per shape as the blocks of its incident edges,
+/// The correspondence matrix of a collection (eq. 4.6), one block of W per edge (its target reads it transposed),
 /// never assembled: for an edge (k, l) the block C(P_k, P_l) is a(., .) with every row normalised to sum 1 (each
 /// point is mapped somewhere with constant energy) and C(P_l, P_k) is a^T row-normalised likewise. Diffusion
 /// needs a symmetric kernel, so the operator is W = (C + C^T) / 2 with degrees d = W 1, applied as the symmetric
@@ -50,6 +50,7 @@ class correspondence_matrix {
     offset_.assign(static_cast<std::size_t>(N + 1), 0);
     for (index_t i = 0; i < N; ++i) offset_[std::size_t(i + 1)] = offset_[std::size_t(i)] + sample_counts[std::size_t(i)];
     incident_.resize(static_cast<std::size_t>(N));
+    blocks_.reserve(edges.size());  // reserved: a sparse block is copied, not moved, when a vector grows
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const auto& E = edges[e];
       if (E.source < 0 || E.source >= N || E.target < 0 || E.target >= N || E.source == E.target || !E.scores)
@@ -72,17 +73,22 @@ class correspondence_matrix {
       }
       const block_matrix forward = row_normalised(a.cast<double>());
       const block_matrix backward = row_normalised(block_matrix(a.cast<double>().transpose()));
-      // W(P_k, P_l) = (C(P_k, P_l) + C(P_l, P_k)^T) / 2, and W(P_l, P_k) is its transpose.
-      block_matrix w = 0.5 * (forward + block_matrix(backward.transpose()));
-      incident_[std::size_t(E.target)].push_back({E.source, block_matrix(w.transpose())});
-      incident_[std::size_t(E.source)].push_back({E.target, std::move(w)});
+      // W(P_k, P_l) = (C(P_k, P_l) + C(P_l, P_k)^T) / 2, stored once: W(P_l, P_k) is its transpose.
+      const auto b = static_cast<index_t>(blocks_.size());
+      blocks_.push_back({E.source, E.target, 0.5 * (forward + block_matrix(backward.transpose()))});
+      incident_[std::size_t(E.source)].push_back({b, true});
+      incident_[std::size_t(E.target)].push_back({b, false});
     }
     const index_t n = offset_.back();
     degree_.setConstant(n, self_weight);
-    for (index_t k = 0; k < N; ++k)
-      for (const auto& [other, w] : incident_[std::size_t(k)])
-        for (index_t r = 0; r < w.outerSize(); ++r)
-          for (block_matrix::InnerIterator it(w, r); it; ++it) degree_[offset_[std::size_t(k)] + r] += it.value();
+    for (const auto& B : blocks_) {
+      const index_t os = offset_[std::size_t(B.source)], ot = offset_[std::size_t(B.target)];
+      for (index_t r = 0; r < B.w.outerSize(); ++r)
+        for (block_matrix::InnerIterator it(B.w, r); it; ++it) {
+          degree_[os + r] += it.value();
+          degree_[ot + it.col()] += it.value();
+        }
+    }
     inv_sqrt_degree_ = degree_.cwiseSqrt().cwiseInverse();
   }
 
@@ -103,9 +109,16 @@ class correspondence_matrix {
       const index_t o = offset_[std::size_t(k)];
       const index_t m = offset_[std::size_t(k + 1)] - o;
       vector_x<double> acc = self_weight * x.segment(o, m).cwiseProduct(inv_sqrt_degree_.segment(o, m));
-      for (const auto& [other, w] : incident_[std::size_t(k)]) {
-        const index_t oo = offset_[std::size_t(other)];
-        acc.noalias() += w * x.segment(oo, w.cols()).cwiseProduct(inv_sqrt_degree_.segment(oo, w.cols()));
+      for (const auto& [b, is_source] : incident_[std::size_t(k)]) {
+        const edge_block& B = blocks_[std::size_t(b)];
+        if (is_source) {
+          const index_t oo = offset_[std::size_t(B.target)];
+          acc.noalias() += B.w * x.segment(oo, B.w.cols()).cwiseProduct(inv_sqrt_degree_.segment(oo, B.w.cols()));
+        } else {
+          const index_t oo = offset_[std::size_t(B.source)];
+          acc.noalias() +=
+              B.w.transpose() * x.segment(oo, B.w.rows()).cwiseProduct(inv_sqrt_degree_.segment(oo, B.w.rows()));
+        }
       }
       y.segment(o, m) = acc.cwiseProduct(inv_sqrt_degree_.segment(o, m));
     });
@@ -117,9 +130,13 @@ class correspondence_matrix {
 
  private:
   using block_matrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
-  struct incident_block {
-    index_t other;
-    block_matrix w;  ///< rows: this shape's samples, columns: the other shape's
+  struct edge_block {
+    index_t source, target;
+    block_matrix w;  ///< W(P_source, P_target): rows the source's samples, columns the target's
+  };
+  struct incident_edge {
+    index_t block;   ///< index into blocks_
+    bool is_source;  ///< this shape is the block's source (its rows), else its target (its columns)
   };
 
   static block_matrix row_normalised(block_matrix a) {
@@ -134,7 +151,8 @@ class correspondence_matrix {
 
   unsigned threads_ = 1;
   std::vector<index_t> offset_;
-  std::vector<std::vector<incident_block>> incident_;
+  std::vector<edge_block> blocks_;
+  std::vector<std::vector<incident_edge>> incident_;
   vector_x<double> degree_;
   vector_x<double> inv_sqrt_degree_;
 };
