@@ -44,12 +44,17 @@ feature_point_accuracy evaluate_feature_points(const fs::path& fuzzy_dir, const 
     const auto B = read_mesh(f.files[std::size_t(b)]).mesh;
     const dijkstra_geodesics<double> geo(B.V, B.F);
     const auto& fb = features[std::size_t(b)];
+    // Every source's predictions for b in one call: the geodesics from b's feature points are computed once,
+    // not once per source.
+    std::vector<index_t> predicted, truth, sources;
+    std::vector<std::size_t> begin;
     for (const index_t a : scored) {
       if (a == b) continue;
       const auto& fa = features[std::size_t(a)];
       const auto map = best_fuzzy_vertex_map(f.fuzzy, f.records, a, b, B.V);
       const std::size_t n = std::min(fa.size(), fb.size());
-      std::vector<index_t> predicted, truth;
+      sources.push_back(a);
+      begin.push_back(predicted.size());
       for (std::size_t k = 0; k < n; ++k) {
         const bool a_bad = std::size_t(fa[k]) >= map.size(), b_bad = fb[k] >= B.V.rows();
         if (a_bad || b_bad)
@@ -60,15 +65,19 @@ feature_point_accuracy evaluate_feature_points(const fs::path& fuzzy_dir, const 
         predicted.push_back(map[std::size_t(fa[k])]);
         truth.push_back(fb[k]);
       }
-      const auto e = benchmark_geodesic_errors<double>(B.V, B.F, geo, std::span<const index_t>(predicted),
-                                                       std::span<const index_t>(truth), threads);
-      errors.insert(errors.end(), e.begin(), e.end());
-      ++out.pairs;
+    }
+    begin.push_back(predicted.size());
+    const auto e = benchmark_geodesic_errors<double>(B.V, B.F, geo, std::span<const index_t>(predicted),
+                                                     std::span<const index_t>(truth), threads);
+    errors.insert(errors.end(), e.begin(), e.end());
+    for (std::size_t p = 0; p < sources.size(); ++p) {
       double sum = 0;
       std::size_t near = 0;
-      for (const double x : e) sum += x, near += x <= 0.25 ? 1 : 0;
-      out.per_pair.push_back({f.records[std::size_t(a)].name, f.records[std::size_t(b)].name,
-                              e.empty() ? 0.0 : sum / double(e.size()), e.empty() ? 0.0 : double(near) / double(e.size())});
+      for (std::size_t i = begin[p]; i < begin[p + 1]; ++i) sum += e[i], near += e[i] <= 0.25 ? 1 : 0;
+      const double n = double(begin[p + 1] - begin[p]);
+      out.per_pair.push_back({f.records[std::size_t(sources[p])].name, f.records[std::size_t(b)].name,
+                              n > 0 ? sum / n : 0.0, n > 0 ? double(near) / n : 0.0});
+      ++out.pairs;
     }
     if (progress) progress(j + 1, scored.size());
   }
