@@ -165,11 +165,14 @@ void run_inspect_stage(const analyze_settings& s, const std::vector<fs::path>& f
     shape_check& c = checks[i];
     c.name = files[i].stem().string();
     c.file = files[i].filename().string();
-    std::string error, report_json;
+    std::string error, report_json, short_faces_json;
     try {
       const auto mf = read_mesh(files[i]);
       const mesh_report r = check_mesh(mf.mesh, options);
       report_json = r.to_json();
+      if (mf.short_faces > 0)  // the same keys as `shapestruct inspect --json`
+        short_faces_json = "\"short_faces\":" + std::to_string(mf.short_faces) + ",\"first_short_face_" +
+                           (mf.short_face_at_is_byte_offset ? "byte" : "line") + "\":" + std::to_string(mf.first_short_face_at) + ",";
       if (!r.shape_problem.empty()) c.reason = r.shape_problem;
       else if (r.num_faces == 0 || r.num_vertices == 0) c.reason = "empty: no faces";
       else if (r.num_non_finite_vertices > 0) c.reason = std::to_string(r.num_non_finite_vertices) + " non-finite vertices";
@@ -195,7 +198,7 @@ void run_inspect_stage(const analyze_settings& s, const std::vector<fs::path>& f
     } else {
       std::string fesc;
       detail::json_write_string(fesc, c.file);
-      text = "{\"file\":" + fesc + ",\"ok\":true,\"report\":" + report_json + "}\n";
+      text = "{\"file\":" + fesc + ",\"ok\":true," + short_faces_json + "\"report\":" + report_json + "}\n";
     }
     write_atomic(dir / (c.file + ".json"), text);  // FILE.json: two files may share a stem
     std::lock_guard<std::mutex> g(m);

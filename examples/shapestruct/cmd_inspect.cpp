@@ -84,9 +84,16 @@ int run_inspect(const inspect_options& o) {
     const fs::path& file = files[i];
     std::string error;
     mesh_report report;
+    std::string short_faces_json, short_faces_text;
     try {
       const auto mf = read_mesh(file);
       report = check_mesh(mf.mesh, options);
+      if (mf.short_faces > 0) {
+        const std::string at = (mf.short_face_at_is_byte_offset ? "byte " : "line ") + std::to_string(mf.first_short_face_at);
+        short_faces_text = "  faces with fewer than 3 corners: " + std::to_string(mf.short_faces) + " (not in the mesh; the first at " + at + ")\n";
+        short_faces_json = "\"short_faces\":" + std::to_string(mf.short_faces) + ",\"first_short_face_" +
+                           (mf.short_face_at_is_byte_offset ? "byte" : "line") + "\":" + std::to_string(mf.first_short_face_at) + ",";
+      }
     } catch (const io_error& e) {
       error = e.what();
     } catch (const std::bad_alloc&) {
@@ -101,12 +108,12 @@ int run_inspect(const inspect_options& o) {
     if (json) {
       std::cout << "{\"file\":\"" << json_escape(file.string()) << "\",";
       if (error.empty())
-        std::cout << "\"ok\":true,\"report\":" << report.to_json() << "}";
+        std::cout << "\"ok\":true," << short_faces_json << "\"report\":" << report.to_json() << "}";
       else
         std::cout << "\"ok\":false,\"error\":\"" << json_escape(error) << "\"}";
       std::cout << (i + 1 < files.size() ? ",\n" : "\n");
     } else if (error.empty()) {
-      std::cout << "== " << file.string() << "\n" << report.to_string();
+      std::cout << "== " << file.string() << "\n" << report.to_string() << short_faces_text;
       if (i + 1 < files.size()) std::cout << "\n";
     }
   }

@@ -12,6 +12,7 @@
 #include "option_checks.hpp"
 #include "shapestruct/blended/blended_matcher.hpp"
 #include "shapestruct/io/read_mesh.hpp"
+#include "shapestruct/knn/knn_index.hpp"
 #include "shapestruct/io/vertex_map_file.hpp"
 #include "shapestruct/io/write_mesh.hpp"
 
@@ -30,11 +31,78 @@ struct match_options {
   long long max_enumerated = 30000;
   std::string pruning = "distances";
   long long seed = 1;
-  bool close_holes = false;
+  bool strict = false;       // refuse defective meshes instead of repairing them
+  bool close_holes = false;  // with --strict: allow this one repair
   bool keep_largest = false;
+  long long max_hole_edges = 64;
   long long threads = 0;
   bool verbose = false;
 };
+
+/// The tool's own way out of a defect: the switch that repairs it, or why none does.
+std::string remedy_of(mesh_defect defect, const match_options& m) {
+  const std::string drop_strict = m.strict ? "drop --strict to let match repair it" : "";
+  switch (defect) {
+    case mesh_defect::collapsed_face:
+    case mesh_defect::duplicate_face: return m.strict ? "drop --strict to remove such faces" : "";
+    case mesh_defect::non_manifold_edge:
+      return m.strict ? "if they repeat one face, drop --strict to remove the repeats; otherwise no repair applies "
+                        "('shapestruct inspect FILE' lists them)"
+                      : "no repair applies; 'shapestruct inspect FILE' lists them";
+    case mesh_defect::non_manifold_vertex: return drop_strict;
+    case mesh_defect::several_pieces:
+      return m.strict ? "add --keep-largest to keep the largest piece only, or drop --strict" : "";
+    case mesh_defect::hole:
+      return m.strict && !m.close_holes ? "add --close-holes (fills holes of up to --max-hole-edges edges, now " +
+                                              std::to_string(m.max_hole_edges) + "), or " + drop_strict
+                                        : "raise --max-hole-edges (now " + std::to_string(m.max_hole_edges) + ")";
+    case mesh_defect::non_orientable:
+    case mesh_defect::genus:
+      return "blended maps need a sphere-like surface and no repair applies; 'shapestruct fuzzy' (extrinsic mode) "
+             "works on any shape";
+    case mesh_defect::coordinate_overflow: return "scale the coordinates down";
+    case mesh_defect::zero_area: return "";
+  }
+  return "";
+}
+
+/// Prepares one mesh for matching; a defect is reported with the file, the problem (naming the element) and
+/// the tool's switch that repairs it. The repairs made are said on stderr.
+blended_shape<double> prepare_or_explain(const blended_matcher<>& matcher, const triangle_mesh<double>& mesh,
+                                         const std::string& path, const match_options& m) {
+  try {
+    auto shape = matcher.prepare(mesh);
+    if (shape.repairs().any()) std::fprintf(stderr, "match: repaired %s: %s\n", path.c_str(), shape.repairs().to_string().c_str());
+    return shape;
+  } catch (const mesh_defect_error& e) {
+    throw mesh_defect_error(e.reason(), e.defect(), e.element(), path, e.problem(), remedy_of(e.defect(), m));
+  } catch (const invalid_input& e) {
+    // validate_mesh under --strict: a face repeating a corner
+    if (m.strict && e.reason() == input_error::bad_face && std::string(e.what()).find("repeats a vertex") != std::string::npos)
+      throw mesh_defect_error(e.reason(), mesh_defect::collapsed_face, e.element(), path,
+                              "face " + std::to_string(e.element()) + " repeats a vertex (it has no area)",
+                              remedy_of(mesh_defect::collapsed_face, m));
+    throw invalid_input(e.reason(), e.element(), path + ": " + e.what());
+  }
+}
+
+/// A source vertex that a repair dropped (on a small piece, or on no face) has no image; it takes the image of
+/// the nearest kept source vertex, so the dense map still has one line per vertex. Returns how many did.
+index_t map_dropped_vertices(const triangle_mesh<double>& source, surface_map<double>& map) {
+  std::vector<index_t> kept, dropped;
+  for (index_t v = 0; v < map.source_size(); ++v)
+    (map.target_vertex(v) == no_index ? dropped : kept).push_back(v);
+  if (dropped.empty() || kept.empty()) return 0;
+  Eigen::Matrix<double, Eigen::Dynamic, 3> P(static_cast<index_t>(kept.size()), 3);
+  for (std::size_t i = 0; i < kept.size(); ++i) P.row(static_cast<index_t>(i)) = source.V.row(kept[i]);
+  const knn_index<double, 3> index(P);
+  for (const index_t v : dropped) {
+    const index_t from = kept[static_cast<std::size_t>(index.nearest(source.V.row(v).transpose()).index)];
+    map.points[static_cast<std::size_t>(v)] = map.points[static_cast<std::size_t>(from)];
+    map.nearest[static_cast<std::size_t>(v)] = map.nearest[static_cast<std::size_t>(from)];
+  }
+  return static_cast<index_t>(dropped.size());
+}
 
 int run_match(const match_options& m) {
   const std::string& out = m.out;
@@ -48,8 +116,12 @@ int run_match(const match_options& m) {
   const long long max_enumerated = m.max_enumerated;
   const long long seed = m.seed;
   const std::string& pruning = m.pruning;
-  o.shape.close_small_holes = m.close_holes;
-  o.shape.keep_largest_component = m.keep_largest;
+  // The tool repairs what is safely repairable unless --strict; the library keeps every repair off by default.
+  o.shape.remove_bad_faces = !m.strict;
+  o.shape.split_non_manifold_vertices = !m.strict;
+  o.shape.keep_largest_component = !m.strict || m.keep_largest;
+  o.shape.close_small_holes = !m.strict || m.close_holes;
+  o.shape.max_hole_edges = m.max_hole_edges;
   o.threads = static_cast<int>(m.threads);
   const bool verbose = m.verbose;
   const std::vector<std::string> pos{m.src, m.tgt};
@@ -62,18 +134,23 @@ int run_match(const match_options& m) {
   cands.options.pruning = pruning == "random" ? triplet_pruning::random : triplet_pruning::feature_distances;
   const blended_matcher<> matcher(o, cands);
 
-  const auto A = read_mesh(std::filesystem::path(pos[0])).mesh;
-  const auto B = read_mesh(std::filesystem::path(pos[1])).mesh;
+  const auto read_noting = [](const std::string& path) {
+    auto file = read_mesh(std::filesystem::path(path));
+    if (file.short_faces > 0) std::fprintf(stderr, "match: %s\n", file.short_faces_note(path).c_str());
+    return std::move(file.mesh);
+  };
+  const auto A = read_noting(pos[0]);
+  const auto B = read_noting(pos[1]);
   if (verbose) std::fprintf(stderr, "read %s (%ld vertices) and %s (%ld vertices)\n", pos[0].c_str(), long(A.V.rows()),
                             pos[1].c_str(), long(B.V.rows()));
   const auto t0 = std::chrono::steady_clock::now();
-  const auto sa = matcher.prepare(A);
-  const auto sb = matcher.prepare(B);
+  const auto sa = prepare_or_explain(matcher, A, pos[0], m);
+  const auto sb = prepare_or_explain(matcher, B, pos[1], m);
   if (verbose)
     std::fprintf(stderr, "  %-12s %8.3f s (features: %zu and %zu)\n", "preprocess",
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), sa.features().size(),
                  sb.features().size());
-  const auto res = matcher.match(sa, sb);
+  auto res = matcher.match(sa, sb);
   if (verbose)
     std::fprintf(stderr, "total %.3f s, %zu candidate maps, %zu blended maps, selected score %.4f\n",
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), res.candidates.size(),
@@ -81,13 +158,12 @@ int run_match(const match_options& m) {
   if (res.info != status::ok)
     std::fprintf(stderr, "warning: eigen-solver status %s; the map is from the last iterate\n", to_string(res.info));
 
+  const index_t borrowed = map_dropped_vertices(A, res.map);
+  if (borrowed > 0)
+    std::fprintf(stderr, "match: %ld vertices of %s were on dropped pieces; each takes the image of its nearest kept vertex\n",
+                 long(borrowed), pos[0].c_str());
   std::vector<index_t> ids(static_cast<std::size_t>(res.map.source_size()));
-  for (index_t v = 0; v < res.map.source_size(); ++v) {
-    ids[static_cast<std::size_t>(v)] = res.map.target_vertex(v);
-    if (ids[static_cast<std::size_t>(v)] == no_index)
-      throw std::runtime_error("source vertex " + std::to_string(v) +
-                               " is unmapped (dropped by --keep-largest); a dense .map needs every vertex");
-  }
+  for (index_t v = 0; v < res.map.source_size(); ++v) ids[static_cast<std::size_t>(v)] = res.map.target_vertex(v);
   write_vertex_map(std::filesystem::path(out), std::span<const index_t>(ids));
   if (!precise.empty()) {
     std::ofstream f(precise);
@@ -164,13 +240,25 @@ command_fn setup_match(CLI::App& app) {
       ->type_name("distances|random")
       ->check(one_of({"distances", "random"}));
   app.add_option("--seed", m->seed, "seed of the random pruning (default 1)")->type_name("S")->check(integer());
-  app.add_flag("--close-holes", m->close_holes, "fill boundary loops of up to 64 edges before matching (off by default)");
-  app.add_flag("--keep-largest", m->keep_largest, "keep only the largest connected component (off by default)");
+  app.add_flag("--strict", m->strict,
+               "refuse a mesh that is not a closed genus-0 manifold instead of repairing it\n"
+               "(by default match removes collapsed and duplicate faces, splits non-manifold\n"
+               "vertices, keeps the largest piece and fills holes, and says what it changed)");
+  app.add_flag("--close-holes", m->close_holes, "with --strict: still fill holes of up to --max-hole-edges edges");
+  app.add_flag("--keep-largest", m->keep_largest, "with --strict: still keep only the largest connected piece");
+  app.add_option("--max-hole-edges", m->max_hole_edges, "longest hole (boundary loop, in edges) that is filled (default 64)")
+      ->type_name("N")
+      ->check(at_least(3LL));
   app.add_option("--threads", m->threads, "worker threads, 0 = all cores (default 0)")->type_name("T")->check(at_least(0LL));
   app.add_flag("-v,--verbose", m->verbose, "progress and timings per stage on stderr");
   app.footer(
-      "Blended intrinsic maps (dissertation ch. 3) from SRC to TGT (closed genus-0 meshes: OFF, OBJ, PLY, STL).\n"
-      "Writes the benchmark's dense map: one line per SRC vertex, the 0-based TGT vertex it maps to.");
+      "Blended intrinsic maps (dissertation ch. 3) from SRC to TGT (OFF, OBJ, PLY, STL). They need closed genus-0\n"
+      "surfaces: by default match repairs what it safely can (collapsed and duplicate faces, non-manifold\n"
+      "vertices, small pieces, holes of up to --max-hole-edges edges) and says on stderr what it changed;\n"
+      "--strict refuses instead. A defect no repair removes (a handle, a non-manifold edge) is refused with\n"
+      "the file, the element and the reason.\n"
+      "Writes the benchmark's dense map: one line per SRC vertex, the 0-based TGT vertex it maps to (a vertex\n"
+      "on a dropped piece takes the image of its nearest kept vertex).");
   return [m] { return run_match(*m); };
 }
 

@@ -60,7 +60,7 @@ struct component_report {
 ///    vertex is a component on its own.
 ///  - Euler characteristic: #V - #E + #topological faces over ALL vertices (isolated ones add 1 each).
 ///  - genus: sum over components of (2 - chi_c - b_c) / 2; -1 when a component is non-manifold or
-///    non-orientable (genus undefined there).
+///    non-orientable (genus undefined there) or when there is no face at all (no surface).
 ///  - duplicate vertices: vertices whose position equals (exactly) that of a lower-indexed vertex.
 struct mesh_report {
   index_t num_vertices = 0;
@@ -423,7 +423,8 @@ template <class Scalar>
     genus_sum += std::max<index_t>(c.genus, 0);
     if (!c.orientable) r.orientable = false;
   }
-  r.genus = genus_defined ? genus_sum : -1;
+  // Genus belongs to surfaces: vertices without a face (e.g. what is left of a file of 2-corner faces) have none.
+  r.genus = genus_defined && num_topological_faces > 0 ? genus_sum : -1;
   return r;
 }
 

@@ -52,6 +52,60 @@ class invalid_input : public std::invalid_argument {
   index_t element_;
 };
 
+/// The surface defects an algorithm needing a closed genus-0 manifold refuses, each with the repair (if any)
+/// that removes it, so that a caller (e.g. a command-line tool) can name its own switch for that repair.
+enum class mesh_defect {
+  collapsed_face,       ///< a face with a repeated corner (repair: remove_collapsed_and_duplicate_faces)
+  duplicate_face,       ///< two faces on the same three vertices (same repair)
+  non_manifold_edge,    ///< an edge with more than two faces that are not duplicates (no repair)
+  non_manifold_vertex,  ///< a vertex joining several fans of faces (repair: split_non_manifold_vertices)
+  several_pieces,       ///< more than one connected component (repair: keep_largest_component)
+  hole,                 ///< a boundary loop (repair: close_small_holes, up to a loop length)
+  non_orientable,       ///< faces that cannot be oriented consistently (no repair)
+  genus,                ///< handles: a closed surface that is not a topological sphere (no repair)
+  coordinate_overflow,  ///< coordinates so large that lengths or areas overflow (rescale the input)
+  zero_area,            ///< the surface has no area (no repair)
+};
+
+inline const char* to_string(mesh_defect d) noexcept {
+  switch (d) {
+    case mesh_defect::collapsed_face: return "collapsed_face";
+    case mesh_defect::duplicate_face: return "duplicate_face";
+    case mesh_defect::non_manifold_edge: return "non_manifold_edge";
+    case mesh_defect::non_manifold_vertex: return "non_manifold_vertex";
+    case mesh_defect::several_pieces: return "several_pieces";
+    case mesh_defect::hole: return "hole";
+    case mesh_defect::non_orientable: return "non_orientable";
+    case mesh_defect::genus: return "genus";
+    case mesh_defect::coordinate_overflow: return "coordinate_overflow";
+    case mesh_defect::zero_area: return "zero_area";
+  }
+  return "unknown";
+}
+
+/// An invalid_input that is a surface defect: the reason (non_manifold, unsupported_topology, ...), which defect
+/// it is, and the message in two halves, the problem and the library's remedy, so that a caller (e.g. a tool
+/// with its own switches) can state the problem and give its own remedy without parsing the message.
+/// what() is "who: problem; remedy".
+class mesh_defect_error : public invalid_input {
+ public:
+  mesh_defect_error(input_error reason, mesh_defect defect, index_t element, const std::string& who,
+                    const std::string& problem, const std::string& remedy)
+      : invalid_input(reason, element, who + ": " + problem + (remedy.empty() ? "" : "; " + remedy)),
+        defect_(defect),
+        problem_(problem),
+        remedy_(remedy) {}
+  [[nodiscard]] mesh_defect defect() const noexcept { return defect_; }
+  /// What is wrong, naming the element, e.g. "it has 2 holes (a boundary loop runs along edge (4, 9))".
+  [[nodiscard]] const std::string& problem() const noexcept { return problem_; }
+  /// The library's way out (an option, a repair function), or "" when there is none.
+  [[nodiscard]] const std::string& remedy() const noexcept { return remedy_; }
+
+ private:
+  mesh_defect defect_;
+  std::string problem_, remedy_;
+};
+
 /// Why a file could not be read or written.
 enum class file_error {
   cannot_open,   ///< the file does not exist or cannot be opened / created

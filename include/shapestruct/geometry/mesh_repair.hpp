@@ -40,6 +40,17 @@ struct hole_filling_result {
   index_t added_vertices = 0;
   index_t added_faces = 0;
   index_t longest_loop_left = 0;  ///< the length (edges) of the longest loop left open, 0 if none
+  std::vector<index_t> filled_loop_lengths;  ///< the length (edges) of every loop filled, in the order filled
+};
+
+/// Result of remove_collapsed_and_duplicate_faces(): vertices are untouched, faces keep their order.
+template <class Scalar>
+struct face_removal_result {
+  triangle_mesh<Scalar> mesh;
+  std::vector<index_t> kept_faces;  ///< for each face of the result, its index in the input
+  index_t collapsed_faces = 0;      ///< removed: a corner repeated (the face is a segment or a point)
+  index_t duplicate_faces = 0;      ///< removed: the same three corners as an earlier face, in any order
+  index_t first_collapsed = no_index, first_duplicate = no_index;  ///< input index of the first of each, if any
 };
 
 /// Result of split_non_manifold_vertices(): old vertices keep their indices, the copies are appended.
@@ -298,6 +309,72 @@ template <SurfaceMesh Mesh>
       mesh, [&](const auto& V, const auto& F) { return split_non_manifold_vertices_kernel<S>(V, F); });
 }
 
+// ------------------------------------------------------------------------ remove_collapsed_and_duplicate_faces
+
+/// Kernel of remove_collapsed_and_duplicate_faces(). \param V #V x 3, \param F #F x 3 (indices checked here;
+/// repeated corners are what it removes, so it does not call validate_mesh's face check).
+template <class Scalar>
+face_removal_result<Scalar> remove_collapsed_and_duplicate_faces_kernel(const Eigen::Ref<const matrix_x3<Scalar>>& V,
+                                                                        const Eigen::Ref<const face_matrix>& F) {
+  const index_t n = V.rows(), m = F.rows();
+  for (index_t f = 0; f < m; ++f)
+    for (int k = 0; k < 3; ++k)
+      if (F(f, k) < 0 || F(f, k) >= n)
+        throw invalid_input(input_error::bad_face, f,
+                            "remove_collapsed_and_duplicate_faces: face " + std::to_string(f) + " refers to vertex " +
+                                std::to_string(F(f, k)) + ", outside [0, " + std::to_string(n) + ")");
+  face_removal_result<Scalar> out;
+  std::vector<char> keep(static_cast<std::size_t>(m), 1);
+  // Faces sorted by their sorted corner triple; within a run of equal triples the lowest face index stays.
+  std::vector<std::array<index_t, 4>> key(static_cast<std::size_t>(m));
+  for (index_t f = 0; f < m; ++f) {
+    std::array<index_t, 3> c{F(f, 0), F(f, 1), F(f, 2)};
+    std::sort(c.begin(), c.end());
+    key[static_cast<std::size_t>(f)] = {c[0], c[1], c[2], f};
+    if (c[0] == c[1] || c[1] == c[2]) {
+      keep[static_cast<std::size_t>(f)] = 0;
+      ++out.collapsed_faces;
+      if (out.first_collapsed == no_index) out.first_collapsed = f;
+    }
+  }
+  std::sort(key.begin(), key.end());
+  for (std::size_t i = 1; i < key.size(); ++i) {
+    const auto& a = key[i - 1];
+    const auto& b = key[i];
+    const index_t f = b[3];
+    if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2] && keep[static_cast<std::size_t>(f)]) {
+      keep[static_cast<std::size_t>(f)] = 0;
+      ++out.duplicate_faces;
+      out.first_duplicate = out.first_duplicate == no_index ? f : std::min(out.first_duplicate, f);
+    }
+  }
+  out.mesh.V = V;
+  out.mesh.F.resize(m - out.collapsed_faces - out.duplicate_faces, 3);
+  index_t g = 0;
+  for (index_t f = 0; f < m; ++f)
+    if (keep[static_cast<std::size_t>(f)]) {
+      out.mesh.F.row(g++) = F.row(f);
+      out.kept_faces.push_back(f);
+    }
+  return out;
+}
+
+/// Removes the faces that carry no surface as a triangle: those with a repeated corner (collapsed to a
+/// segment or a point) and repeats of an earlier face with the same three corners (in any order or
+/// orientation; such a pair makes its edges non-manifold, each with 4 faces). The first copy of a repeated
+/// face stays. Vertices are untouched (a vertex only the removed faces used becomes unreferenced).
+/// Zero-area faces with three distinct corners are kept: removing one would open a hole in a closed surface.
+/// \param mesh any SurfaceMesh; its face indices must be in range
+/// \throws invalid_input bad_face (face index) when an index is out of range
+/// \returns the mesh, which input face each kept face is, and how many of each kind were removed
+/// Complexity: O(F log F).
+template <SurfaceMesh Mesh>
+[[nodiscard]] face_removal_result<mesh_scalar_t<Mesh>> remove_collapsed_and_duplicate_faces(const Mesh& mesh) {
+  using S = mesh_scalar_t<Mesh>;
+  return detail::on_canonical<S>(
+      mesh, [&](const auto& V, const auto& F) { return remove_collapsed_and_duplicate_faces_kernel<S>(V, F); });
+}
+
 // ----------------------------------------------------------------------------------------- close_small_holes
 
 /// Kernel of close_small_holes(). \param V #V x 3, \param F #F x 3 (validated here).
@@ -377,6 +454,7 @@ hole_filling_result<Scalar> close_small_holes_kernel(const Eigen::Ref<const matr
       continue;
     }
     ++out.holes_filled;
+    out.filled_loop_lengths.push_back(len);
     // The boundary runs v_i -> v_(i+1) in its face, so the filling faces run v_(i+1) -> v_i to agree with it.
     if (len == 3) {
       new_faces.push_back({loop[2], loop[1], loop[0]});

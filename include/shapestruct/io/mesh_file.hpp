@@ -27,6 +27,21 @@ struct mesh_file {
   std::vector<index_t> face_group;
   /// OBJ only: the names of the `o`/`g` objects and groups, in order of first appearance.
   std::vector<std::string> group_names;
+  /// Faces of fewer than 3 corners in the file (OFF `2 0 1`, OBJ `f 1 2`): they bound no surface, so they are
+  /// not in `mesh`; counted here so that a caller can say so rather than lose them silently.
+  index_t short_faces = 0;
+  /// Where the first of them is: a line (text formats) or a byte offset (binary PLY), 0 if there is none.
+  std::int64_t first_short_face_at = 0;
+  bool short_face_at_is_byte_offset = false;
+
+  /// "FILE:LINE: N faces with fewer than 3 corners are not surfaces and were left out", or "" when none.
+  [[nodiscard]] std::string short_faces_note(const std::string& file) const {
+    if (short_faces == 0) return "";
+    return file + (short_face_at_is_byte_offset ? ": byte " : ":") + std::to_string(first_short_face_at) + ": " +
+           (short_faces == 1 ? std::string("a face with") : std::to_string(short_faces) + " faces with") +
+           " fewer than 3 corners (a face needs 3) " + (short_faces == 1 ? "is" : "are") +
+           " not part of the surface and left out" + (short_faces > 1 ? " (the first is here)" : "");
+  }
 };
 
 }  // namespace shapestruct

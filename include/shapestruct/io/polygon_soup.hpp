@@ -48,6 +48,13 @@ void triangulate_soup(const polygon_soup& soup, const std::string& name, mesh_fi
         throw io_error(file_error::bad_index, name, soup.binary ? 0 : soup.where[k], soup.binary ? soup.where[k] : 0,
                        "face " + std::to_string(k) + " refers to vertex " + std::to_string(poly[c]) + " but the file has " +
                            std::to_string(nv) + " vertices (valid: 0.." + std::to_string(nv - 1) + ")");
+    if (poly.size() < 3) {
+      if (out.short_faces++ == 0) {
+        out.first_short_face_at = soup.where[k];
+        out.short_face_at_is_byte_offset = soup.binary;
+      }
+      continue;
+    }
     const std::size_t before = tris.size();
     triangulate_polygon(out.mesh.V, poly, tris);
     origin.insert(origin.end(), tris.size() - before, static_cast<index_t>(k));
