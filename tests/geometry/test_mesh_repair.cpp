@@ -97,6 +97,7 @@ TEST_CASE("close_small_holes fills a triangle hole with one face") {
     CHECK(r.holes_left == 0);
     CHECK(r.added_vertices == 0);
     CHECK(r.added_faces == 1);
+    CHECK(r.filled_loop_lengths == std::vector<index_t>{3});
     const auto rep = check_mesh(r.mesh);
     CHECK(rep.is_closed_genus0_manifold());
     CHECK(rep.num_inconsistent_edges == 0);
@@ -282,4 +283,37 @@ TEST_CASE("split_non_manifold_vertices: invalid input") {
   expect_reason(input_error::non_finite, 2, [] { (void)split_non_manifold_vertices(test::with_nan_vertex()); });
   expect_reason(input_error::bad_face, 3, [] { (void)split_non_manifold_vertices(test::with_bad_index()); });
   expect_reason(input_error::empty, no_index, [] { (void)split_non_manifold_vertices(triangle_mesh<double>{}); });
+}
+
+TEST_CASE("remove_collapsed_and_duplicate_faces removes repeated-corner faces and repeats of a face") {
+  const auto ico = make_icosphere(1);
+  triangle_mesh<double> m = ico;
+  const index_t n = ico.F.rows();
+  m.F.conservativeResize(n + 3, 3);
+  m.F.row(n) << ico.F(4, 2), ico.F(4, 1), ico.F(4, 0);  // face 4 again, reversed: its edges get 4 faces
+  m.F.row(n + 1) << 0, 0, 1;                             // collapsed to a segment
+  m.F.row(n + 2) << ico.F(4, 1), ico.F(4, 2), ico.F(4, 0);  // face 4 a third time, rotated
+  REQUIRE(check_mesh(m).num_non_manifold_edges == 3);
+  on_both_models(m, [&](const auto& mesh, double) {
+    const auto r = remove_collapsed_and_duplicate_faces(mesh);
+    CHECK(r.collapsed_faces == 1);
+    CHECK(r.duplicate_faces == 2);
+    CHECK(r.first_collapsed == n + 1);
+    CHECK(r.first_duplicate == n);
+    CHECK(r.mesh.F.rows() == n);
+    CHECK(r.mesh.V.rows() == ico.V.rows());  // vertices untouched
+    CHECK(r.kept_faces.size() == static_cast<std::size_t>(n));
+    CHECK(r.kept_faces.back() == n - 1);  // the first copy stays, in order
+    CHECK(check_mesh(r.mesh).is_closed_genus0_manifold());
+  });
+  // A clean mesh is returned as it is.
+  const auto clean = remove_collapsed_and_duplicate_faces(ico);
+  CHECK(clean.collapsed_faces + clean.duplicate_faces == 0);
+  CHECK(clean.mesh.F == ico.F);
+}
+
+TEST_CASE("remove_collapsed_and_duplicate_faces: invalid input") {
+  auto m = make_icosphere(1);
+  m.F(3, 1) = m.V.rows();
+  expect_reason(input_error::bad_face, 3, [&] { (void)remove_collapsed_and_duplicate_faces(m); });
 }

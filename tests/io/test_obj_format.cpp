@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include "io_test_helpers.hpp"
+#include "shapestruct/core/check_mesh.hpp"
 #include "shapestruct/io/obj_format.hpp"
 #include "support/fixtures.hpp"
 #include "support/legacy_mesh.hpp"
@@ -94,4 +95,17 @@ TEST_CASE("format_obj/read_obj round trip is exact, with colours, for triangle_m
   const auto lb = read_obj(tmp.path / "legacy.obj");
   CHECK(lb.mesh.V == tet.V);
   CHECK(lb.mesh.F == tet.F);
+}
+
+TEST_CASE("read_obj: a face of 2 corners is counted with its line and leaves no surface") {
+  const auto m = read_obj("v 0 0 0\nv 1 0 0\nf 1 2\n", "two.obj");
+  CHECK(m.mesh.num_faces() == 0);
+  CHECK(m.short_faces == 1);
+  CHECK(m.first_short_face_at == 3);
+  CHECK(m.short_faces_note("two.obj") ==
+        "two.obj:3: a face with fewer than 3 corners (a face needs 3) is not part of the surface and left out");
+  // What is left is two vertices and no surface: no genus.
+  const mesh_report r = check_mesh(m.mesh.V, m.mesh.F);
+  CHECK(r.genus == -1);
+  CHECK(r.to_string().find("genus undefined") != std::string::npos);
 }

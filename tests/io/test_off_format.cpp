@@ -128,3 +128,15 @@ TEST_CASE("format_off/read_off round trip is exact, with colours, for triangle_m
   CHECK(lb.mesh.num_vertices() == 6);
   CHECK(lb.mesh.F == shapestruct::test::octahedron<double>().F);
 }
+
+TEST_CASE("read_off: a face of fewer than 3 corners is counted with its line, not silently dropped") {
+  const auto m = read_off("OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n2 0 1\n1 3\n", "short.off");
+  CHECK(m.mesh.num_faces() == 1);
+  CHECK(m.short_faces == 2);
+  CHECK(m.first_short_face_at == 8);
+  CHECK_FALSE(m.short_face_at_is_byte_offset);
+  CHECK(m.short_faces_note("short.off") ==
+        "short.off:8: 2 faces with fewer than 3 corners (a face needs 3) are not part of the surface and left out "
+        "(the first is here)");
+  CHECK(read_off("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "ok.off").short_faces == 0);
+}

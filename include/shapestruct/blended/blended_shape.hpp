@@ -14,7 +14,6 @@
 
 #include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/conformal/mid_edge_flattening.hpp"
-#include "shapestruct/core/check_mesh.hpp"
 #include "shapestruct/core/concepts/surface_mesh.hpp"
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/core/triangle_mesh.hpp"
@@ -27,6 +26,7 @@
 #include "shapestruct/geometry/geodesic_ball_convexity.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
 #include "shapestruct/geometry/mesh_repair.hpp"
+#include "shapestruct/geometry/mesh_topology.hpp"
 
 namespace shapestruct {
 
@@ -145,74 +145,6 @@ index_t cut_face_away_from_features(const matrix_x3<Scalar>& V, const face_matri
   return best;
 }
 
-/// Throws mesh_defect_error for the first reason (V, F) is not a closed, connected, orientable genus-0 manifold,
-/// naming an offending element and the blended_shape_options repair that removes the defect, if one does.
-/// longest_hole_left: the longest boundary loop close_small_holes left open (0 when it did not run).
-template <class Scalar>
-void require_topological_sphere(const Eigen::Ref<const matrix_x3<Scalar>>& V, const Eigen::Ref<const face_matrix>& F,
-                                const blended_shape_options& options, index_t longest_hole_left) {
-  check_mesh_options co;
-  co.max_examples = 1;
-  const mesh_report r = check_mesh_kernel<Scalar>(V, F, co);
-  const auto pair = [](const std::array<index_t, 2>& e) {
-    return "(" + std::to_string(e[0]) + ", " + std::to_string(e[1]) + ")";
-  };
-  const auto more = [](index_t n, const char* what) {
-    return n > 1 ? " (" + std::to_string(n) + " such " + what + ")" : std::string();
-  };
-  const auto fail = [](input_error reason, mesh_defect defect, index_t element, const std::string& problem,
-                       const std::string& remedy) {
-    throw mesh_defect_error(reason, defect, element, "blended_shape",
-                            "a closed, connected genus-0 surface is required, but " + problem, remedy);
-  };
-  if (r.num_non_manifold_edges > 0)
-    fail(input_error::non_manifold, mesh_defect::non_manifold_edge, r.non_manifold_edge_examples[0][0],
-         "edge " + pair(r.non_manifold_edge_examples[0]) + " has more than two faces" + more(r.num_non_manifold_edges, "edges"),
-         options.remove_bad_faces ? "they are not repeats of one face, so no repair applies"
-                                  : "if they repeat one face, the option remove_bad_faces removes the repeats");
-  if (r.num_non_manifold_vertices > 0)
-    fail(input_error::non_manifold, mesh_defect::non_manifold_vertex, r.non_manifold_vertex_examples[0],
-         "vertex " + std::to_string(r.non_manifold_vertex_examples[0]) + " joins several separate fans of faces" +
-             more(r.num_non_manifold_vertices, "vertices"),
-         "the option split_non_manifold_vertices repairs this");
-  if (r.num_components > 1) {
-    const index_t stray = r.num_unreferenced_vertices;
-    const index_t pieces = r.num_components - stray;
-    if (pieces > 1)
-      fail(input_error::unsupported_topology, mesh_defect::several_pieces, r.components[1].first_vertex,
-           "the mesh has " + std::to_string(pieces) + " separate pieces (the second starts at vertex " +
-               std::to_string(r.components[1].first_vertex) + ")" +
-               (stray ? " and " + std::to_string(stray) + " vertices on no face" : std::string()),
-           "the option keep_largest_component keeps the largest piece only");
-    fail(input_error::unsupported_topology, mesh_defect::several_pieces, r.unreferenced_vertex_examples[0],
-         "vertex " + std::to_string(r.unreferenced_vertex_examples[0]) + " is on no face" + more(stray, "vertices"),
-         "the option keep_largest_component drops such vertices");
-  }
-  if (r.num_boundary_loops > 0)
-    fail(input_error::unsupported_topology, mesh_defect::hole, r.boundary_edge_examples[0][0],
-         "it has " + std::to_string(r.num_boundary_loops) + (r.num_boundary_loops == 1 ? " hole" : " holes") +
-             " (a boundary loop runs along edge " + pair(r.boundary_edge_examples[0]) + ")" +
-             (longest_hole_left > 0 ? " longer than the " + std::to_string(options.max_hole_edges) +
-                                          " edges the hole filling closes (the longest has " +
-                                          std::to_string(longest_hole_left) + " edges)"
-                                    : std::string()),
-         options.close_small_holes ? "raise max_hole_edges to fill it"
-                                   : "the option close_small_holes fills holes of up to max_hole_edges edges");
-  if (!r.orientable || r.num_inconsistent_edges > 0)
-    fail(input_error::unsupported_topology, mesh_defect::non_orientable,
-         r.inconsistent_edge_examples.empty() ? no_index : r.inconsistent_edge_examples[0][0],
-         "its faces are not consistently oriented" +
-             (r.inconsistent_edge_examples.empty()
-                  ? std::string(" (the surface is not orientable)")
-                  : " (both faces of edge " + pair(r.inconsistent_edge_examples[0]) + " run along it the same way)"),
-         "no repair applies");
-  if (r.genus != 0)
-    fail(input_error::unsupported_topology, mesh_defect::genus, no_index,
-         "the surface has genus " + std::to_string(r.genus) + " (" + std::to_string(r.genus) +
-             (r.genus == 1 ? " handle" : " handles") + ", Euler characteristic " + std::to_string(r.euler_characteristic) + ")",
-         "no repair removes handles");
-}
-
 }  // namespace detail
 
 /// Per-shape precomputation of blended intrinsic maps: the mesh scaled to unit area, its mid-edge flattening,
@@ -299,7 +231,29 @@ class blended_shape {
     for (index_t i = static_cast<index_t>(original_of_.size()) - 1; i >= 0; --i)
       if (original_of_[static_cast<std::size_t>(i)] != no_index)
         internal_of_[static_cast<std::size_t>(original_of_[static_cast<std::size_t>(i)])] = i;
-    detail::require_topological_sphere<Scalar>(m.V, m.F, options, longest_hole_left);
+    try {
+      require_closed_genus0_manifold(m.V, m.F, "blended_shape");
+    } catch (const mesh_defect_error& e) {
+      // The same problem, with the remedy in terms of this class's options.
+      std::string problem = e.problem(), remedy;
+      switch (e.defect()) {
+        case mesh_defect::non_manifold_edge:
+          remedy = options.remove_bad_faces ? "they are not repeats of one face, so no repair applies"
+                                            : "if they repeat one face, the option remove_bad_faces removes the repeats";
+          break;
+        case mesh_defect::non_manifold_vertex: remedy = "the option split_non_manifold_vertices repairs this"; break;
+        case mesh_defect::several_pieces: remedy = "the option keep_largest_component keeps the largest piece"; break;
+        case mesh_defect::hole:
+          if (longest_hole_left > 0)
+            problem += ", longer than the " + std::to_string(options.max_hole_edges) +
+                       " edges the hole filling closes (the longest has " + std::to_string(longest_hole_left) + " edges)";
+          remedy = options.close_small_holes ? "raise the option max_hole_edges to fill it"
+                                             : "the option close_small_holes fills holes of up to max_hole_edges edges";
+          break;
+        default: remedy = e.remedy();
+      }
+      throw mesh_defect_error(e.reason(), e.defect(), e.element(), "blended_shape", problem, remedy);
+    }
     const Scalar area = total_area<Scalar>(m.V, m.F, validation_level::trust);
     if (!(area > 0))
       throw mesh_defect_error(input_error::degenerate_face, mesh_defect::zero_area, no_index, "blended_shape",

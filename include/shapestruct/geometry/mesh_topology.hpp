@@ -45,7 +45,8 @@ inline std::string edge_name(const std::array<index_t, 2>& e) {
 /// intrinsic maps. Runs validate_mesh() first.
 /// \param V #V x 3 positions (floating point), \param F #F x 3 vertex indices (any integer type)
 /// \param who the calling function, named at the start of every message
-/// \throws invalid_input, checked in this order:
+/// \throws mesh_defect_error (an invalid_input that also says which defect, and splits the message into the
+///         problem and the remedy), checked in this order:
 ///   - empty / non_finite / bad_face from validate_mesh();
 ///   - non_manifold: element = the first vertex of a non-manifold edge (the message names the edge), else the
 ///     non-manifold (bowtie) vertex;
@@ -62,33 +63,34 @@ mesh_report require_closed_genus0_manifold(const Eigen::MatrixBase<DerivedV>& V,
   static_assert(std::is_floating_point_v<typename DerivedV::Scalar>, "V must have a floating-point scalar");
   validate_mesh(V, F, who);
   const mesh_report r = detail::check_for_requirement(V, F);
-  const std::string pre = std::string(who) +
-                          " needs a closed, connected, orientable manifold of genus 0 (a "
-                          "topological sphere), but ";
+  const std::string pre = "needs a closed, connected, orientable manifold of genus 0 (a topological sphere), but ";
+  const auto fail = [&](input_error reason, mesh_defect defect, index_t element, const std::string& problem,
+                        const std::string& remedy) {
+    throw mesh_defect_error(reason, defect, element, who, pre + problem, remedy);
+  };
   if (r.num_non_manifold_edges > 0) {
     const auto& e = r.non_manifold_edge_examples.front();
-    throw invalid_input(input_error::non_manifold, e[0],
-                        pre + "edge " + detail::edge_name(e) + " is shared by more than two faces (" +
-                            std::to_string(r.num_non_manifold_edges) +
-                            " such edges); no automatic repair exists: cut the extra faces off, or if they form "
-                            "a separate piece run keep_largest_component()");
+    fail(input_error::non_manifold, mesh_defect::non_manifold_edge, e[0],
+         "edge " + detail::edge_name(e) + " is shared by more than two faces (" +
+             std::to_string(r.num_non_manifold_edges) + " such edges)",
+         "remove_collapsed_and_duplicate_faces() removes repeated faces; otherwise no automatic repair exists: cut "
+         "the extra faces off, or if they form a separate piece run keep_largest_component()");
   }
   if (r.num_non_manifold_vertices > 0) {
     const index_t v = r.non_manifold_vertex_examples.front();
-    throw invalid_input(input_error::non_manifold, v,
-                        pre + "vertex " + std::to_string(v) +
-                            " joins several fans of faces that share no edge there (a bowtie; " +
-                            std::to_string(r.num_non_manifold_vertices) +
-                            " such vertices); split_non_manifold_vertices() gives each fan its own vertex (appended, "
-                            "existing indices unchanged)");
+    fail(input_error::non_manifold, mesh_defect::non_manifold_vertex, v,
+         "vertex " + std::to_string(v) + " joins several fans of faces that share no edge there (a bowtie; " +
+             std::to_string(r.num_non_manifold_vertices) + " such vertices)",
+         "split_non_manifold_vertices() gives each fan its own vertex (appended, existing indices unchanged)");
   }
   if (r.num_boundary_edges > 0) {
     const auto& e = r.boundary_edge_examples.front();
-    throw invalid_input(input_error::unsupported_topology, e[0],
-                        pre + "it has a boundary: " + std::to_string(r.num_boundary_edges) + " boundary edges in " +
-                            std::to_string(r.num_boundary_loops) + " loops, e.g. edge " + detail::edge_name(e) +
-                            "; merge_duplicate_vertices() closes seams of split vertices and close_small_holes() "
-                            "fills holes (set max_boundary_loop_length to at least the longest loop)");
+    fail(input_error::unsupported_topology, mesh_defect::hole, e[0],
+         "it has a boundary: " + std::to_string(r.num_boundary_edges) + " boundary edges in " +
+             std::to_string(r.num_boundary_loops) + (r.num_boundary_loops == 1 ? " loop" : " loops") +
+             " (holes), e.g. edge " + detail::edge_name(e),
+         "merge_duplicate_vertices() closes seams of split vertices and close_small_holes() fills holes (set "
+         "max_boundary_loop_length to at least the longest loop)");
   }
   if (r.num_components > 1) {
     // The first component starts at vertex 0; name the first vertex outside it.
@@ -96,24 +98,22 @@ mesh_report require_closed_genus0_manifold(const Eigen::MatrixBase<DerivedV>& V,
                            : r.unreferenced_vertex_examples.empty() ? no_index
                                                                     : r.unreferenced_vertex_examples.front();
     const bool only_stray = r.components.size() == 1;
-    throw invalid_input(input_error::unsupported_topology, second,
-                        pre + "it has " + std::to_string(r.num_components) + " connected components (" +
-                            std::to_string(r.components.size()) + " with faces, " +
-                            std::to_string(r.num_unreferenced_vertices) + " unreferenced vertices), e.g. vertex " +
-                            std::to_string(second) + " is not connected to vertex 0; " +
-                            (only_stray ? "remove_unreferenced_vertices() drops the stray vertices"
-                                        : "keep_largest_component() keeps the piece of largest area"));
+    fail(input_error::unsupported_topology, mesh_defect::several_pieces, second,
+         "it has " + std::to_string(r.num_components) + " connected components (" +
+             std::to_string(r.components.size()) + " with faces, " + std::to_string(r.num_unreferenced_vertices) +
+             " vertices on no face), e.g. vertex " + std::to_string(second) + " is not connected to vertex 0",
+         only_stray ? "remove_unreferenced_vertices() drops the stray vertices"
+                    : "keep_largest_component() keeps the piece of largest area");
   }
   if (!r.orientable)
-    throw invalid_input(input_error::unsupported_topology, no_index,
-                        pre +
-                            "the surface is not orientable (no consistent choice of face orientations exists); "
-                            "no repair can make it a sphere");
+    fail(input_error::unsupported_topology, mesh_defect::non_orientable, no_index,
+         "the surface is not orientable (no consistent choice of face orientations exists)",
+         "no repair can make it a sphere");
   if (r.genus != 0)
-    throw invalid_input(input_error::unsupported_topology, no_index,
-                        pre + "it has genus " + std::to_string(r.genus) + " (Euler characteristic " +
-                            std::to_string(r.euler_characteristic) +
-                            "); no repair removes handles: use a genus-0 version of the shape");
+    fail(input_error::unsupported_topology, mesh_defect::genus, no_index,
+         "it has genus " + std::to_string(r.genus) + " (Euler characteristic " +
+             std::to_string(r.euler_characteristic) + ")",
+         "no repair removes handles: use a genus-0 version of the shape");
   return r;
 }
 

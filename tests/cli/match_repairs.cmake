@@ -1,0 +1,98 @@
+# `shapestruct match` on meshes built to have exactly one defect each: by default it repairs what is safely
+# repairable and says what it changed; --strict refuses, naming the defect, the element and the flag that
+# fixes it; a defect no repair removes is refused with the reason. Run by CTest as
+#   cmake -DCLI=<path to shapestruct> -DWORK=<scratch folder> -P match_repairs.cmake
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+include(${CMAKE_CURRENT_LIST_DIR}/run_cli.cmake)
+
+# An octahedron, closed and genus 0: 6 vertices, 8 faces.
+set(oct_v "1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n")
+set(oct_f "3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n")
+# write_off(NAME NV NF VERTICES FACES)
+function(write_off name nv nf vertices faces)
+  file(WRITE ${WORK}/${name}.off "OFF\n${nv} ${nf} 0\n${vertices}${faces}")
+endfunction()
+write_off(octahedron 6 8 "${oct_v}" "${oct_f}")
+string(REPLACE "3 0 3 5\n" "" one_hole "${oct_f}")
+write_off(hole3 6 7 "${oct_v}" "${one_hole}")
+string(REPLACE "3 3 1 5\n" "" two_gone "${one_hole}")
+write_off(hole4 6 6 "${oct_v}" "${two_gone}")
+write_off(duplicate 6 9 "${oct_v}" "${oct_f}3 4 2 0\n")
+write_off(collapsed 6 9 "${oct_v}" "${oct_f}3 0 0 1\n")
+write_off(two_pieces 12 16 "${oct_v}5 0 0\n3 0 0\n4 1 0\n4 -1 0\n4 0 1\n4 0 -1\n"
+          "${oct_f}3 6 8 10\n3 8 7 10\n3 7 9 10\n3 9 6 10\n3 8 6 11\n3 7 8 11\n3 9 7 11\n3 6 9 11\n")
+# Two octahedra touching at one vertex (vertex 0 = the second one's vertex 1): a non-manifold vertex.
+write_off(bowtie 11 16 "${oct_v}2 0 0\n1 1 0\n1 -1 0\n1 0 1\n1 0 -1\n"
+          "${oct_f}3 6 7 9\n3 7 0 9\n3 0 8 9\n3 8 6 9\n3 7 6 10\n3 0 7 10\n3 8 0 10\n3 6 8 10\n")
+write_off(huge 6 8 "1e200 0 0\n-1e200 0 0\n0 1e200 0\n0 -1e200 0\n0 0 1e200\n0 0 -1e200\n" "${oct_f}")
+write_off(short_face 6 9 "${oct_v}" "${oct_f}2 0 1\n")
+# A 4 x 4 torus: genus 1, which no repair removes.
+set(tv "")
+set(tf "")
+set(cq 1 0 -1 0)
+set(sq 0 1 0 -1)
+foreach(i RANGE 3)
+  list(GET cq ${i} ci)
+  list(GET sq ${i} si)
+  foreach(j RANGE 3)
+    list(GET cq ${j} cj)
+    list(GET sq ${j} sj)
+    math(EXPR r "3 + ${cj}")
+    math(EXPR x "${r} * ${ci}")
+    math(EXPR y "${r} * ${si}")
+    string(APPEND tv "${x} ${y} ${sj}\n")
+    math(EXPR a "${i} * 4 + ${j}")
+    math(EXPR b "((${i} + 1) % 4) * 4 + ${j}")
+    math(EXPR c "((${i} + 1) % 4) * 4 + (${j} + 1) % 4")
+    math(EXPR d "${i} * 4 + (${j} + 1) % 4")
+    string(APPEND tf "3 ${a} ${b} ${c}\n3 ${a} ${c} ${d}\n")
+  endforeach()
+endforeach()
+write_off(torus 16 32 "${tv}" "${tf}")
+
+# expect(NAME CODE REGEX ARGS...): match NAME.off onto the octahedron; exit code CODE, output matching REGEX.
+function(expect name code regex)
+  file(REMOVE ${WORK}/${name}.map)
+  run_cli(${code} out match ${WORK}/${name}.off ${WORK}/octahedron.off -o ${WORK}/${name}.map ${ARGN})
+  if(NOT out MATCHES "${regex}")
+    message(FATAL_ERROR "match ${name}.off ${ARGN}: the output does not match '${regex}':\n${out}")
+  endif()
+  if(code EQUAL 0)
+    file(STRINGS ${WORK}/${name}.map lines)
+    list(LENGTH lines n)
+    file(READ ${WORK}/${name}.off text)
+    string(REGEX MATCH "OFF\n([0-9]+) " _ "${text}")
+    if(NOT n EQUAL CMAKE_MATCH_1)
+      message(FATAL_ERROR "match ${name}.off ${ARGN}: ${n} map lines for ${CMAKE_MATCH_1} vertices")
+    endif()
+  elseif(EXISTS ${WORK}/${name}.map)
+    message(FATAL_ERROR "match ${name}.off ${ARGN} refused the mesh but wrote ${name}.map")
+  endif()
+  message(STATUS "match ${name}.off ${ARGN}: exit ${code}, as expected")
+endfunction()
+
+expect(octahedron 0 "^$")  # a clean mesh: nothing repaired, nothing said
+# One repair each, said on stderr; --strict refuses with the defect, the element and the flag.
+expect(hole3 0 "repaired .*hole3.off: filled 1 hole \\(3 edges\\)")
+expect(hole3 1 "hole3.off: .*boundary: 3 boundary edges in 1 loop \\(holes\\), e.g. edge \\([0-9]+, [0-9]+\\); add --close-holes" --strict)
+expect(hole3 0 "filled 1 hole" --strict --close-holes)
+expect(hole4 1 "hole4.off: .*longer than the 3 edges the hole filling closes \\(the longest has 4 edges\\); raise --max-hole-edges \\(now 3\\)"
+       --max-hole-edges 3)
+expect(duplicate 0 "repaired .*: removed 1 duplicate face\n")
+expect(duplicate 1 "duplicate.off: .*edge \\([0-9]+, [0-9]+\\) is shared by more than two faces.*drop --strict" --strict)
+expect(collapsed 0 "repaired .*: removed 1 collapsed face \\(a corner repeated\\)")
+expect(collapsed 1 "collapsed.off: face 8 repeats a vertex.*drop --strict" --strict)
+expect(two_pieces 0 "dropped 1 small piece \\(6 vertices, 8 faces\\).*6 vertices of .*two_pieces.off were on dropped pieces")
+expect(two_pieces 1 "two_pieces.off: .*2 connected components.*vertex 6 is not connected to vertex 0; add --keep-largest" --strict)
+expect(bowtie 0 "split 1 non-manifold vertex; dropped 1 small piece")
+expect(bowtie 1 "bowtie.off: .*vertex 0 joins several fans.*drop --strict" --strict)
+# Refused whatever the options, with the reason.
+expect(torus 1 "torus.off: .*genus 1 .*no repair applies")
+expect(huge 1 "huge.off: the mesh's area overflows the floating-point range \\(coordinates as large as 1e\\+200\\); scale")
+# A face of 2 corners is said with its file and line (it is not part of the surface).
+expect(short_face 0 "short_face.off:17: a face with fewer than 3 corners \\(a face needs 3\\) is not part of the surface")
+run_cli(0 out inspect ${WORK}/short_face.off)
+if(NOT out MATCHES "faces with fewer than 3 corners: 1 \\(not in the mesh; the first at line 17\\)")
+  message(FATAL_ERROR "inspect does not count the 2-corner face:\n${out}")
+endif()
