@@ -151,8 +151,8 @@ int main(int argc, char** argv) {
   options.threads = threads;
   // The benchmark's TOSCA meshes have small holes and SHREC'07 some stray pieces: the runner turns the repairs on
   // (the library leaves them off by default).
-  options.shape.close_small_holes = true;
-  options.shape.keep_largest_component = true;
+  options.shape.repairs.close_small_holes = true;
+  options.shape.repairs.keep_largest_component = true;
   // --groups: build every blended map in full and score each one against the truth (<set>_groups.csv), to see
   // whether the selection picked the best group and what each group's measures were.
   options.full_maps_for_all_groups = diagnose_groups;

@@ -12,6 +12,7 @@
 #include "option_checks.hpp"
 #include "shapestruct/core/check_mesh.hpp"
 #include "shapestruct/core/errors.hpp"
+#include "shapestruct/geometry/sphere_repair.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 
 namespace {
@@ -38,6 +39,8 @@ std::string json_escape(const std::string& s) {
   }
   return out;
 }
+
+std::string json_quote(const std::string& s) { return "\"" + json_escape(s) + "\""; }
 
 bool has_mesh_extension(const fs::path& p) {
   std::string ext = p.extension().string();
@@ -84,10 +87,22 @@ int run_inspect(const inspect_options& o) {
     const fs::path& file = files[i];
     std::string error;
     mesh_report report;
-    std::string short_faces_json, short_faces_text;
+    std::string short_faces_json, short_faces_text, match_json, match_text;
     try {
       const auto mf = read_mesh(file);
       report = check_mesh(mf.mesh, options);
+      // What `shapestruct match` would do with it by default: repair it into a sphere, or refuse it.
+      try {
+        const auto fixed = repair_to_sphere<double>(mf.mesh.V, mf.mesh.F, sphere_repair_options::all(), "match");
+        const std::string what = fixed.report.any() ? fixed.report.to_string() : "no repair needed";
+        match_text = "  match (default repairs): accepted, " + what + "\n";
+        match_json = "\"match\":{\"accepted\":true,\"repairs\":" + json_quote(fixed.report.any() ? what : "") + "},";
+      } catch (const invalid_input& e) {
+        const auto* d = dynamic_cast<const mesh_defect_error*>(&e);
+        const std::string why = d ? d->problem() : std::string(e.what());
+        match_text = "  match (default repairs): refused, " + why + "\n";
+        match_json = "\"match\":{\"accepted\":false,\"reason\":" + json_quote(why) + "},";
+      }
       if (mf.short_faces > 0) {
         const std::string at = (mf.short_face_at_is_byte_offset ? "byte " : "line ") + std::to_string(mf.first_short_face_at);
         short_faces_text = "  faces with fewer than 3 corners: " + std::to_string(mf.short_faces) + " (not in the mesh; the first at " + at + ")\n";
@@ -108,12 +123,12 @@ int run_inspect(const inspect_options& o) {
     if (json) {
       std::cout << "{\"file\":\"" << json_escape(file.string()) << "\",";
       if (error.empty())
-        std::cout << "\"ok\":true," << short_faces_json << "\"report\":" << report.to_json() << "}";
+        std::cout << "\"ok\":true," << short_faces_json << match_json << "\"report\":" << report.to_json() << "}";
       else
         std::cout << "\"ok\":false,\"error\":\"" << json_escape(error) << "\"}";
       std::cout << (i + 1 < files.size() ? ",\n" : "\n");
     } else if (error.empty()) {
-      std::cout << "== " << file.string() << "\n" << report.to_string() << short_faces_text;
+      std::cout << "== " << file.string() << "\n" << report.to_string() << short_faces_text << match_text;
       if (i + 1 < files.size()) std::cout << "\n";
     }
   }
@@ -127,7 +142,7 @@ cli::command_fn setup_inspect(CLI::App& app) {
   auto o = std::make_shared<inspect_options>();
   app.add_option("FILE|DIR", o->inputs, "mesh files; a DIR stands for every .off .obj .ply .stl file below it, sorted")
       ->required();
-  app.add_flag("--json", o->json, "one JSON array, an object {file, ok, report | error} per file");
+  app.add_flag("--json", o->json, "one JSON array, an object {file, ok, match, report | error} per file");
   app.add_option("--max-examples", o->max_examples, "offending elements listed per problem (default 10)")
       ->type_name("N")
       ->check(cli::at_least(0LL));
@@ -135,7 +150,10 @@ cli::command_fn setup_inspect(CLI::App& app) {
       "Reads each OFF/OBJ/PLY/STL file and prints check_mesh()'s report: counts of vertices, faces, edges and\n"
       "components; boundary edges and loops; non-manifold edges and vertices; inconsistently oriented edges;\n"
       "degenerate faces; duplicate, non-finite and unreferenced vertices; Euler characteristic and genus per\n"
-      "component; and up to N offending element indices (0-based) per problem.\n"
+      "component; and up to N offending element indices (0-based) per problem. Faces of fewer than 3\n"
+      "corners in the file (not part of the mesh) are counted with the line of the first. The last line says\n"
+      "whether 'shapestruct match' accepts the mesh with its default repairs, and what it would repair,\n"
+      "or why it refuses it.\n"
       "\n"
       "Exit code 0 when every file was read, 1 when any could not be (the error, naming file and line or\n"
       "byte offset, goes to stderr), 2 on a usage error.");

@@ -117,11 +117,13 @@ int run_match(const match_options& m) {
   const long long seed = m.seed;
   const std::string& pruning = m.pruning;
   // The tool repairs what is safely repairable unless --strict; the library keeps every repair off by default.
-  o.shape.remove_bad_faces = !m.strict;
-  o.shape.split_non_manifold_vertices = !m.strict;
-  o.shape.keep_largest_component = !m.strict || m.keep_largest;
-  o.shape.close_small_holes = !m.strict || m.close_holes;
-  o.shape.max_hole_edges = m.max_hole_edges;
+  o.shape.repairs = sphere_repair_options::all(m.max_hole_edges);
+  if (m.strict) {
+    o.shape.repairs.remove_bad_faces = o.shape.repairs.split_non_manifold_vertices = false;
+    o.shape.repairs.keep_largest_component = m.keep_largest;
+    o.shape.repairs.close_small_holes = m.close_holes;
+    o.shape.flattening.accept_pinched_vertices = false;  // a pinch is a defect too: refused, not worked around
+  }
   o.threads = static_cast<int>(m.threads);
   const bool verbose = m.verbose;
   const std::vector<std::string> pos{m.src, m.tgt};

@@ -18,8 +18,8 @@ TEST_CASE("blended_matcher on TOSCA david6 -> david12 (pruned candidates) keeps 
   const auto A = read_mesh(tosca / "Meshes/david6.off").mesh;
   const auto B = read_mesh(tosca / "Meshes/david12.off").mesh;
   blended_matcher_options o;
-  o.shape.close_small_holes = true;  // TOSCA's meshes have small holes (the benchmark runner's setting)
-  o.shape.keep_largest_component = true;
+  o.shape.repairs.close_small_holes = true;  // TOSCA's meshes have small holes (the benchmark runner's setting)
+  o.shape.repairs.keep_largest_component = true;
   o.shape.feature_radius = 0.1;  // 10 AGD maxima per shape (the default 0.15 gives 5, too few to prune)
   const blended_matcher<> matcher(o);
   const auto sa = matcher.prepare(A);

@@ -189,7 +189,7 @@ TEST_CASE("blended_matcher rejects meshes that are not closed genus-0 manifolds,
     CHECK(e->reason() == input_error::unsupported_topology);
     CHECK(std::string(e->what()).find("close_small_holes") != std::string::npos);
     auto o = small_options();
-    o.shape.close_small_holes = true;
+    o.shape.repairs.close_small_holes = true;
     CHECK_NOTHROW((void)blended_matcher<>(o).match(open, good));
   }
   SUBCASE("higher genus") {
@@ -203,7 +203,7 @@ TEST_CASE("blended_matcher rejects meshes that are not closed genus-0 manifolds,
     CHECK(e->reason() == input_error::unsupported_topology);
     CHECK(std::string(e->what()).find("keep_largest_component") != std::string::npos);
     auto o = small_options();
-    o.shape.keep_largest_component = true;
+    o.shape.repairs.keep_largest_component = true;
     const auto r = blended_matcher<>(o).match(test::two_copies(good), good);
     // vertices of the dropped copy are unmapped, the kept copy is mapped
     CHECK(r.map.source_size() == 2 * good.V.rows());

@@ -24,7 +24,7 @@ blended_shape_options small() {
 
 blended_shape_options all_repairs() {
   auto o = small();
-  o.remove_bad_faces = o.split_non_manifold_vertices = o.keep_largest_component = o.close_small_holes = true;
+  o.repairs = sphere_repair_options::all();
   return o;
 }
 
@@ -79,19 +79,19 @@ TEST_CASE("blended_shape repair: holes are filled and their sizes reported") {
   CHECK(e.defect() == mesh_defect::hole);
   CHECK(e.reason() == input_error::unsupported_topology);
   CHECK(contains(e.problem(), "4 boundary edges in 1 loop"));
-  CHECK(e.remedy() == "the option close_small_holes fills holes of up to max_hole_edges edges");
+  CHECK(e.remedy() == "the repair close_small_holes fills holes of up to max_hole_edges edges");
   auto o = small();
-  o.close_small_holes = true;
+  o.repairs.close_small_holes = true;
   const blended_shape<double> s(holed.V, holed.F, o);
   CHECK(s.repairs().holes_filled == std::vector<index_t>{4});
   CHECK(s.repairs().to_string() == "filled 1 hole (4 edges)");
   CHECK(s.mesh().V.rows() == sphere.V.rows() + 1);  // the fan's centre
   CHECK(s.original_vertex(sphere.V.rows()) == no_index);
-  o.max_hole_edges = 3;  // too short: the problem says by how much
+  o.repairs.max_hole_edges = 3;  // too short: the problem says by how much
   const auto left = defect_of(holed, o);
   CHECK(left.defect() == mesh_defect::hole);
   CHECK(contains(left.problem(), "longer than the 3 edges the hole filling closes (the longest has 4 edges)"));
-  CHECK(left.remedy() == "raise the option max_hole_edges to fill it");
+  CHECK(left.remedy() == "raise max_hole_edges to fill it");
 }
 
 TEST_CASE("blended_shape repair: duplicate and collapsed faces are removed") {
@@ -108,7 +108,7 @@ TEST_CASE("blended_shape repair: duplicate and collapsed faces are removed") {
   m.F.row(n + 1) << 3, 7, 3;
   CHECK_THROWS_AS((void)blended_shape<double>(m.V, m.F, small()), invalid_input);  // validate_mesh: repeated corner
   auto o = small();
-  o.remove_bad_faces = true;
+  o.repairs.remove_bad_faces = true;
   const blended_shape<double> s(m.V, m.F, o);
   CHECK(s.repairs().duplicate_faces_removed == 1);
   CHECK(s.repairs().collapsed_faces_removed == 1);
@@ -124,16 +124,20 @@ TEST_CASE("blended_shape repair: a non-manifold vertex is split, and its copy ma
   for (index_t f = sphere.F.rows(); f < two.F.rows(); ++f)
     for (int k = 0; k < 3; ++k)
       if (two.F(f, k) == nv) two.F(f, k) = 0;
-  const auto e = defect_of(two, small());
+  auto no_pinches = small();
+  no_pinches.flattening.accept_pinched_vertices = false;
+  const auto e = defect_of(two, no_pinches);
   CHECK(e.defect() == mesh_defect::non_manifold_vertex);
   CHECK(e.element() == 0);
-  CHECK(e.remedy() == "the option split_non_manifold_vertices repairs this");
+  CHECK(e.remedy() == "the repair split_non_manifold_vertices gives each fan its own vertex");
+  // Accepting pinches (the flattening's default) sees what the split would give: two spheres.
+  CHECK(defect_of(two, small()).defect() == mesh_defect::several_pieces);
   auto o = small();
-  o.split_non_manifold_vertices = true;
+  o.repairs.split_non_manifold_vertices = true;
   const auto pieces = defect_of(two, o);  // split, the mesh is two spheres (and the stray old vertex nv)
   CHECK(pieces.defect() == mesh_defect::several_pieces);
-  CHECK(pieces.remedy() == "the option keep_largest_component keeps the largest piece");
-  o.keep_largest_component = true;
+  CHECK(pieces.remedy() == "the repair keep_largest_component keeps the largest piece");
+  o.repairs.keep_largest_component = true;
   const blended_shape<double> s(two.V, two.F, o);
   CHECK(s.repairs().non_manifold_vertices_split == 1);
   CHECK(s.repairs().pieces_dropped == 1);
@@ -158,7 +162,7 @@ TEST_CASE("blended_shape repair: the largest piece is kept, dropped input vertic
   auto two = test::two_copies(sphere, 3.0);
   two.V.bottomRows(sphere.V.rows()) *= 0.5;  // the second copy is smaller
   auto o = small();
-  o.keep_largest_component = true;
+  o.repairs.keep_largest_component = true;
   const blended_shape<double> s(two.V, two.F, o);
   CHECK(s.repairs().pieces_dropped == 1);
   CHECK(s.repairs().vertices_dropped == sphere.V.rows());
@@ -184,4 +188,16 @@ TEST_CASE("blended_shape errors: overflow, zero area, genus, each a typed defect
   CHECK(g.defect() == mesh_defect::genus);
   CHECK(contains(g.problem(), "genus 1"));
   CHECK(contains(g.remedy(), "no repair removes handles"));
+}
+
+TEST_CASE("blended_shape accepts a pinched sphere as the flattening does, unless pinches are refused") {
+  const auto sphere = make_icosphere(2);
+  const auto pinched = test::pinched_sphere(sphere, 0, 5);  // vertex 5 merged into 0; 5 is left on no face
+  auto o = small();
+  o.repairs.keep_largest_component = true;  // drops the stray vertex 5
+  const blended_shape<double> s(pinched.V, pinched.F, o);
+  CHECK(s.repairs().non_manifold_vertices_split == 0);
+  CHECK(s.repairs().stray_vertices_dropped == 1);
+  o.flattening.accept_pinched_vertices = false;
+  CHECK(defect_of(pinched, o).defect() == mesh_defect::non_manifold_vertex);
 }

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <numeric>
 #include <string>
@@ -25,8 +24,7 @@
 #include "shapestruct/geometry/average_geodesic_distance.hpp"
 #include "shapestruct/geometry/geodesic_ball_convexity.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
-#include "shapestruct/geometry/mesh_repair.hpp"
-#include "shapestruct/geometry/mesh_topology.hpp"
+#include "shapestruct/geometry/sphere_repair.hpp"
 
 namespace shapestruct {
 
@@ -47,13 +45,9 @@ struct blended_shape_options {
   /// Samples used to interpolate a per-sample quantity to a vertex (Gaussian weights, eq. 3.2's "smooth
   /// interpolation"); the Gaussian width is the sampling's covering radius.
   index_t interpolation_samples = 6;
-  /// Repairs, off by default (the matcher refuses meshes that are not closed genus-0 manifolds otherwise), applied
-  /// in this order; blended_shape::repairs() says what they changed:
-  bool remove_bad_faces = false;  ///< drop faces with a repeated corner and repeats of a face (remove_collapsed_and_duplicate_faces)
-  bool split_non_manifold_vertices = false;  ///< give every fan of a bowtie vertex its own vertex
-  bool keep_largest_component = false;       ///< drop all but the largest connected component
-  bool close_small_holes = false;            ///< fill boundary loops of at most max_hole_edges edges
-  index_t max_hole_edges = 64;
+  /// Repairs, all off by default (the matcher refuses meshes that are not closed genus-0 manifolds otherwise);
+  /// blended_shape::repairs() says what they changed.
+  sphere_repair_options repairs{};
   /// Geodesic radii (unit-area units) of the per-sample convexity descriptor (geodesic_ball_convexity) that
   /// blended_matcher uses to tell a blended map from its intrinsic flip; about a nose, a knee and a foot on a
   /// unit-area human. Empty = no descriptor.
@@ -69,57 +63,7 @@ struct blended_shape_options {
   int threads = 0;  ///< std::threads for the geodesic tables, 0 = all cores; results do not depend on it
 };
 
-/// What the enabled repairs of blended_shape_options changed in one mesh (all zero when none applied).
-struct blended_shape_repairs {
-  index_t collapsed_faces_removed = 0;   ///< faces with a repeated corner
-  index_t duplicate_faces_removed = 0;   ///< repeats of a face on the same three vertices
-  index_t non_manifold_vertices_split = 0;
-  index_t pieces_dropped = 0;            ///< connected components with faces, other than the largest
-  index_t stray_vertices_dropped = 0;    ///< vertices on no face
-  index_t vertices_dropped = 0;          ///< all vertices dropped with the pieces and the stray vertices
-  index_t faces_dropped = 0;             ///< faces dropped with the pieces
-  std::vector<index_t> holes_filled;     ///< the length (edges) of each hole filled
-
-  [[nodiscard]] bool any() const noexcept {
-    return collapsed_faces_removed + duplicate_faces_removed + non_manifold_vertices_split + pieces_dropped +
-               stray_vertices_dropped > 0 || !holes_filled.empty();
-  }
-  /// One line for a person, e.g. "filled 2 holes (5 and 17 edges); removed 3 duplicate faces"; empty if nothing.
-  [[nodiscard]] std::string to_string() const {
-    std::string out;
-    const auto add = [&](const std::string& part) { out += (out.empty() ? "" : "; ") + part; };
-    const auto count = [](index_t n, const char* one, const char* many) {
-      return std::to_string(n) + " " + (n == 1 ? one : many);
-    };
-    if (!holes_filled.empty()) {
-      std::vector<index_t> sizes = holes_filled;
-      std::sort(sizes.begin(), sizes.end());
-      std::string list;
-      const std::size_t shown = std::min<std::size_t>(sizes.size(), 8);
-      for (std::size_t i = 0; i < shown; ++i)
-        list += (i == 0 ? "" : (i + 1 == sizes.size() ? " and " : ", ")) + std::to_string(sizes[i]);
-      if (sizes.size() > shown) list += ", ... up to " + std::to_string(sizes.back());
-      add("filled " + count(static_cast<index_t>(sizes.size()), "hole", "holes") + " (" + list + " edges)");
-    }
-    if (collapsed_faces_removed) add("removed " + count(collapsed_faces_removed, "collapsed face", "collapsed faces") + " (a corner repeated)");
-    if (duplicate_faces_removed) add("removed " + count(duplicate_faces_removed, "duplicate face", "duplicate faces"));
-    if (non_manifold_vertices_split) add("split " + count(non_manifold_vertices_split, "non-manifold vertex", "non-manifold vertices"));
-    if (pieces_dropped)
-      add("dropped " + count(pieces_dropped, "small piece", "small pieces") + " (" +
-          count(vertices_dropped - stray_vertices_dropped, "vertex", "vertices") + ", " + count(faces_dropped, "face", "faces") + ")");
-    if (stray_vertices_dropped) add("dropped " + count(stray_vertices_dropped, "vertex on no face", "vertices on no face"));
-    return out;
-  }
-};
-
 namespace detail {
-
-/// A number as a person writes it in a message: 3 significant digits, "1e+200" style for the huge ones.
-inline std::string short_number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
 
 /// The automatic cut face of blended_shape (see blended_shape_options::cut_clearance): `largest` if all its
 /// corners are at least `clearance` from every feature (distance_to_features: #V x #features), else the largest
@@ -157,107 +101,30 @@ class blended_shape {
   blended_shape() = default;
 
   /// \param V (#V x 3) \param F (#F x 3) a closed, connected, genus-0 manifold (or one the enabled repairs make so)
-  /// \throws invalid_input: empty / non_finite / bad_face (validate_mesh), unsupported_topology and non_manifold
-  ///         (mid_edge_flattening, naming the element and the repair option), degenerate_face (zero total
-  ///         area), bad_parameter (options out of range).
+  /// \throws invalid_input: empty / non_finite / bad_face (validate_mesh); mesh_defect_error for a surface that
+  ///         is not (or that the enabled repairs do not make) a closed genus-0 manifold, for coordinates that
+  ///         overflow and for zero area (repair_to_sphere); bad_parameter (options out of range).
   /// Complexity: O(S (V + E) log V / threads) for the S-sample distance table, plus one sparse factorisation.
   blended_shape(const Eigen::Ref<const matrix_x3<Scalar>>& V, const Eigen::Ref<const face_matrix>& F,
                 const blended_shape_options& options = {}) {
     if (options.num_samples < 3 || options.max_features < 3 || !(options.feature_radius > 0) ||
-        options.interpolation_samples < 1 || !(options.cut_clearance >= 0) || !std::isfinite(options.cut_clearance) ||
-        options.max_hole_edges < 3)
+        options.interpolation_samples < 1 || !(options.cut_clearance >= 0) || !std::isfinite(options.cut_clearance))
       throw invalid_input(input_error::bad_parameter, no_index,
                           "blended_shape: need num_samples >= 3, max_features >= 3, feature_radius > 0, "
-                          "interpolation_samples >= 1, a finite cut_clearance >= 0 and max_hole_edges >= 3");
-    triangle_mesh<Scalar> m;
-    m.V = V;
-    m.F = F;
-    // origin[i]: the input vertex that internal vertex i stands for (a split copy stands for the vertex it
-    // copies; a hole's new centre for none).
-    std::vector<index_t> origin(static_cast<std::size_t>(V.rows()));
-    std::iota(origin.begin(), origin.end(), index_t(0));
-    if (options.remove_bad_faces) {
-      if (V.rows() > 0 && F.rows() > 0 && F.cols() == 3) {
-        auto r = remove_collapsed_and_duplicate_faces(m);
-        repairs_.collapsed_faces_removed = r.collapsed_faces;
-        repairs_.duplicate_faces_removed = r.duplicate_faces;
-        m = std::move(r.mesh);
-      }
-    }
-    validate_mesh(m.V, m.F, "blended_shape");
-    // Coordinates whose squares overflow make every length and area infinite: say so, not "zero area".
-    const Scalar input_area = total_area<Scalar>(m.V, m.F, validation_level::trust);
-    if (!std::isfinite(input_area))
-      throw mesh_defect_error(input_error::non_finite, mesh_defect::coordinate_overflow, no_index, "blended_shape",
-                              "the mesh's area overflows the floating-point range (coordinates as large as " +
-                                  detail::short_number(double(m.V.cwiseAbs().maxCoeff())) + ")",
-                              "scale the coordinates down");
-    if (options.split_non_manifold_vertices) {
-      auto r = shapestruct::split_non_manifold_vertices(m);
-      repairs_.non_manifold_vertices_split = r.split_vertices;
-      for (index_t i = 0; i < r.copied_from.size(); ++i)
-        origin.push_back(origin[static_cast<std::size_t>(r.copied_from(i))]);
-      m = std::move(r.mesh);
-    }
-    if (options.keep_largest_component) {
-      const component_labels cc = connected_components(m.F, m.V.rows());
-      std::vector<char> has_face(static_cast<std::size_t>(cc.count), 0);
-      for (index_t f = 0; f < m.F.rows(); ++f) has_face[static_cast<std::size_t>(cc.face_label(f))] = 1;
-      const index_t pieces = static_cast<index_t>(std::count(has_face.begin(), has_face.end(), char(1)));
-      auto r = keep_largest_component(m);
-      repairs_.pieces_dropped = pieces - 1;
-      repairs_.stray_vertices_dropped = cc.count - pieces;
-      repairs_.vertices_dropped = r.removed_vertices;
-      repairs_.faces_dropped = r.removed_faces;
-      std::vector<index_t> kept(static_cast<std::size_t>(r.mesh.V.rows()), no_index);
-      for (index_t v = 0; v < r.old_to_new.size(); ++v)
-        if (r.old_to_new(v) != no_index) kept[static_cast<std::size_t>(r.old_to_new(v))] = origin[static_cast<std::size_t>(v)];
-      origin = std::move(kept);
-      m = std::move(r.mesh);
-    }
-    index_t longest_hole_left = 0;
-    if (options.close_small_holes) {
-      auto r = shapestruct::close_small_holes(m, options.max_hole_edges);
-      repairs_.holes_filled = r.filled_loop_lengths;
-      longest_hole_left = r.longest_loop_left;
-      origin.resize(static_cast<std::size_t>(r.mesh.V.rows()), no_index);  // new vertices are appended
-      m = std::move(r.mesh);
-    }
+                          "interpolation_samples >= 1 and a finite cut_clearance >= 0");
+    repaired_sphere<Scalar> r = repair_to_sphere<Scalar>(V, F, options.repairs, "blended_shape",
+                                                               options.flattening.accept_pinched_vertices);
+    triangle_mesh<Scalar> m = std::move(r.mesh);
+    repairs_ = std::move(r.report);
     original_vertices_ = V.rows();
-    original_of_ = std::move(origin);
+    original_of_ = std::move(r.original_vertex);
     // internal_of_[v]: the internal vertex of input vertex v, the first one standing for it (a split vertex's
     // first fan keeps the original index, so copies come later); no_index if a repair dropped it.
     internal_of_.assign(static_cast<std::size_t>(V.rows()), no_index);
     for (index_t i = static_cast<index_t>(original_of_.size()) - 1; i >= 0; --i)
       if (original_of_[static_cast<std::size_t>(i)] != no_index)
         internal_of_[static_cast<std::size_t>(original_of_[static_cast<std::size_t>(i)])] = i;
-    try {
-      require_closed_genus0_manifold(m.V, m.F, "blended_shape");
-    } catch (const mesh_defect_error& e) {
-      // The same problem, with the remedy in terms of this class's options.
-      std::string problem = e.problem(), remedy;
-      switch (e.defect()) {
-        case mesh_defect::non_manifold_edge:
-          remedy = options.remove_bad_faces ? "they are not repeats of one face, so no repair applies"
-                                            : "if they repeat one face, the option remove_bad_faces removes the repeats";
-          break;
-        case mesh_defect::non_manifold_vertex: remedy = "the option split_non_manifold_vertices repairs this"; break;
-        case mesh_defect::several_pieces: remedy = "the option keep_largest_component keeps the largest piece"; break;
-        case mesh_defect::hole:
-          if (longest_hole_left > 0)
-            problem += ", longer than the " + std::to_string(options.max_hole_edges) +
-                       " edges the hole filling closes (the longest has " + std::to_string(longest_hole_left) + " edges)";
-          remedy = options.close_small_holes ? "raise the option max_hole_edges to fill it"
-                                             : "the option close_small_holes fills holes of up to max_hole_edges edges";
-          break;
-        default: remedy = e.remedy();
-      }
-      throw mesh_defect_error(e.reason(), e.defect(), e.element(), "blended_shape", problem, remedy);
-    }
-    const Scalar area = total_area<Scalar>(m.V, m.F, validation_level::trust);
-    if (!(area > 0))
-      throw mesh_defect_error(input_error::degenerate_face, mesh_defect::zero_area, no_index, "blended_shape",
-                              "the mesh has zero total area (every face is degenerate)", "");
+    const Scalar area = total_area<Scalar>(m.V, m.F, validation_level::trust);  // > 0: repair_to_sphere checked
     // Unit area: the chapter's sigma = 0.5 and the benchmark's error normalisation are in units of sqrt(area).
     scale_ = std::sqrt(area);
     mesh_.V = m.V / scale_;
@@ -349,8 +216,8 @@ class blended_shape {
   [[nodiscard]] index_t internal_vertex(index_t v) const { return internal_of_[static_cast<std::size_t>(v)]; }
   [[nodiscard]] index_t original_vertex(index_t i) const { return original_of_[static_cast<std::size_t>(i)]; }
   [[nodiscard]] index_t original_size() const noexcept { return original_vertices_; }
-  /// What the repairs enabled in blended_shape_options changed (nothing when none was enabled or needed).
-  [[nodiscard]] const blended_shape_repairs& repairs() const noexcept { return repairs_; }
+  /// What the repairs enabled in blended_shape_options::repairs changed (nothing when none was enabled or needed).
+  [[nodiscard]] const sphere_repair_report& repairs() const noexcept { return repairs_; }
 
  private:
   triangle_mesh<Scalar> mesh_;
@@ -369,7 +236,7 @@ class blended_shape {
   matrix_x<Scalar> interp_weight_;
   std::vector<index_t> internal_of_, original_of_;
   index_t original_vertices_ = 0;
-  blended_shape_repairs repairs_;
+  sphere_repair_report repairs_;
 };
 
 /// Precomputes any SurfaceMesh (gathered into triangle_mesh<double>). \throws invalid_input as the constructor.
