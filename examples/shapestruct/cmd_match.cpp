@@ -51,7 +51,9 @@ std::string remedy_of(mesh_defect defect, const match_options& m) {
                       : "no repair applies; 'shapestruct inspect FILE' lists them";
     case mesh_defect::non_manifold_vertex: return drop_strict;
     case mesh_defect::several_pieces:
-      return m.strict ? "add --keep-largest to keep the largest piece only, or drop --strict" : "";
+      return m.strict ? "add --keep-largest to keep the largest piece only, or drop --strict"
+                      : "add --keep-largest to drop them anyway (by default match drops only pieces holding at most "
+                        "5 % of the area)";
     case mesh_defect::hole:
       return m.strict && !m.close_holes ? "add --close-holes (fills holes of up to --max-hole-edges edges, now " +
                                               std::to_string(m.max_hole_edges) + "), or " + drop_strict
@@ -118,6 +120,7 @@ int run_match(const match_options& m) {
   const std::string& pruning = m.pruning;
   // The tool repairs what is safely repairable unless --strict; the library keeps every repair off by default.
   o.shape.repairs = sphere_repair_options::all(m.max_hole_edges);
+  if (m.keep_largest) o.shape.repairs.max_dropped_area_fraction = 1.0;  // asked for: drop whatever is smaller
   if (m.strict) {
     o.shape.repairs.remove_bad_faces = o.shape.repairs.split_non_manifold_vertices = false;
     o.shape.repairs.keep_largest_component = m.keep_largest;
@@ -247,7 +250,9 @@ command_fn setup_match(CLI::App& app) {
                "(by default match removes collapsed and duplicate faces, splits non-manifold\n"
                "vertices, keeps the largest piece and fills holes, and says what it changed)");
   app.add_flag("--close-holes", m->close_holes, "with --strict: still fill holes of up to --max-hole-edges edges");
-  app.add_flag("--keep-largest", m->keep_largest, "with --strict: still keep only the largest connected piece");
+  app.add_flag("--keep-largest", m->keep_largest,
+               "keep only the largest connected piece, however large the others (by default\n"
+               "only pieces holding at most 5 % of the area are dropped; with --strict, none)");
   app.add_option("--max-hole-edges", m->max_hole_edges, "longest hole (boundary loop, in edges) that is filled (default 64)")
       ->type_name("N")
       ->check(at_least(3LL));
@@ -256,7 +261,8 @@ command_fn setup_match(CLI::App& app) {
   app.footer(
       "Blended intrinsic maps (dissertation ch. 3) from SRC to TGT (OFF, OBJ, PLY, STL). They need closed genus-0\n"
       "surfaces: by default match repairs what it safely can (collapsed and duplicate faces, non-manifold\n"
-      "vertices, small pieces, holes of up to --max-hole-edges edges) and says on stderr what it changed;\n"
+      "vertices, pieces holding at most 5 % of the area, holes of up to --max-hole-edges edges) and says\n"
+      "on stderr what it changed;\n"
       "--strict refuses instead. A defect no repair removes (a handle, a non-manifold edge) is refused with\n"
       "the file, the element and the reason.\n"
       "Writes the benchmark's dense map: one line per SRC vertex, the 0-based TGT vertex it maps to (a vertex\n"

@@ -143,7 +143,7 @@ TEST_CASE("blended_shape repair: a non-manifold vertex is split, and its copy ma
   CHECK(s.repairs().pieces_dropped == 1);
   CHECK(s.repairs().stray_vertices_dropped == 1);
   CHECK(s.repairs().to_string() ==
-        "split 1 non-manifold vertex; dropped 1 small piece (" + std::to_string(nv) + " vertices, " +
+        "split 1 non-manifold vertex; dropped 1 smaller piece (" + std::to_string(nv) + " vertices, " +
             std::to_string(sphere.F.rows()) + " faces); dropped 1 vertex on no face");
   CHECK(s.mesh().V.rows() == nv);
   // Whichever sphere was kept, every internal vertex maps back to an input vertex, vertex 0 (or its copy) to 0.
@@ -158,7 +158,6 @@ TEST_CASE("blended_shape repair: a non-manifold vertex is split, and its copy ma
 
 TEST_CASE("blended_shape repair: the largest piece is kept, dropped input vertices have no internal vertex") {
   const auto sphere = make_icosphere(2);
-  auto big = sphere;
   auto two = test::two_copies(sphere, 3.0);
   two.V.bottomRows(sphere.V.rows()) *= 0.5;  // the second copy is smaller
   auto o = small();
@@ -170,6 +169,14 @@ TEST_CASE("blended_shape repair: the largest piece is kept, dropped input vertic
   CHECK(s.internal_vertex(0) == 0);
   CHECK(s.internal_vertex(sphere.V.rows()) == no_index);
   CHECK(s.original_size() == two.V.rows());
+  // Pieces holding more than max_dropped_area_fraction of the area are parts of the shape: refused.
+  o.repairs.max_dropped_area_fraction = 0.05;  // the small copy holds 0.25 / 1.25 = 20 %
+  const auto e = defect_of(two, o);
+  CHECK(e.defect() == mesh_defect::several_pieces);
+  CHECK(contains(e.problem(), "hold 20 % of its area"));
+  CHECK(contains(e.remedy(), "max_dropped_area_fraction >= 0.2"));
+  o.repairs.max_dropped_area_fraction = 0.25;
+  CHECK_NOTHROW((void)blended_shape<double>(two.V, two.F, o));
 }
 
 TEST_CASE("blended_shape errors: overflow, zero area, genus, each a typed defect with the problem in words") {

@@ -20,8 +20,10 @@ string(REPLACE "3 3 1 5\n" "" two_gone "${one_hole}")
 write_off(hole4 6 6 "${oct_v}" "${two_gone}")
 write_off(duplicate 6 9 "${oct_v}" "${oct_f}3 4 2 0\n")
 write_off(collapsed 6 9 "${oct_v}" "${oct_f}3 0 0 1\n")
-write_off(two_pieces 12 16 "${oct_v}5 0 0\n3 0 0\n4 1 0\n4 -1 0\n4 0 1\n4 0 -1\n"
-          "${oct_f}3 6 8 10\n3 8 7 10\n3 7 9 10\n3 9 6 10\n3 8 6 11\n3 7 8 11\n3 9 7 11\n3 6 9 11\n")
+# A small second piece (an octahedron of radius 0.1: 1 % of the area) and an equal one.
+set(second_f "3 6 8 10\n3 8 7 10\n3 7 9 10\n3 9 6 10\n3 8 6 11\n3 7 8 11\n3 9 7 11\n3 6 9 11\n")
+write_off(two_pieces 12 16 "${oct_v}5.1 0 0\n4.9 0 0\n5 0.1 0\n5 -0.1 0\n5 0 0.1\n5 0 -0.1\n" "${oct_f}${second_f}")
+write_off(equal_pieces 12 16 "${oct_v}5 0 0\n3 0 0\n4 1 0\n4 -1 0\n4 0 1\n4 0 -1\n" "${oct_f}${second_f}")
 # Two octahedra touching at one vertex (vertex 0 = the second one's vertex 1): a non-manifold vertex.
 write_off(bowtie 11 16 "${oct_v}2 0 0\n1 1 0\n1 -1 0\n1 0 1\n1 0 -1\n"
           "${oct_f}3 6 7 9\n3 7 0 9\n3 0 8 9\n3 8 6 9\n3 7 6 10\n3 0 7 10\n3 8 0 10\n3 6 8 10\n")
@@ -83,9 +85,12 @@ expect(duplicate 0 "repaired .*: removed 1 duplicate face\n")
 expect(duplicate 1 "duplicate.off: .*edge \\([0-9]+, [0-9]+\\) is shared by more than two faces.*drop --strict" --strict)
 expect(collapsed 0 "repaired .*: removed 1 collapsed face \\(a corner repeated\\)")
 expect(collapsed 1 "collapsed.off: face 8 repeats a vertex.*drop --strict" --strict)
-expect(two_pieces 0 "dropped 1 small piece \\(6 vertices, 8 faces\\).*6 vertices of .*two_pieces.off were on dropped pieces")
+expect(two_pieces 0 "dropped 1 smaller piece \\(6 vertices, 8 faces\\).*6 vertices of .*two_pieces.off were on dropped pieces")
+expect(equal_pieces 1 "equal_pieces.off: .*2 pieces and those other than the largest hold 50 % of its area.*add --keep-largest to drop them anyway")
+expect(equal_pieces 0 "dropped 1 smaller piece" --keep-largest)
 expect(two_pieces 1 "two_pieces.off: .*2 connected components.*vertex 6 is not connected to vertex 0; add --keep-largest" --strict)
-expect(bowtie 0 "split 1 non-manifold vertex; dropped 1 small piece")
+expect(bowtie 1 "bowtie.off: .*2 pieces and those other than the largest hold [0-9]+ % of its area")  # split: two pieces
+expect(bowtie 0 "split 1 non-manifold vertex; dropped 1 smaller piece" --keep-largest)
 expect(bowtie 1 "bowtie.off: .*vertex 0 joins several fans.*drop --strict" --strict)
 # Refused whatever the options, with the reason.
 expect(torus 1 "torus.off: .*genus 1 .*no repair applies")

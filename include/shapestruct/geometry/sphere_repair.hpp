@@ -29,12 +29,20 @@ struct sphere_repair_options {
   bool remove_bad_faces = false;             ///< faces with a repeated corner, repeats of a face
   bool split_non_manifold_vertices = false;  ///< give every fan of a bowtie vertex its own vertex
   bool keep_largest_component = false;       ///< drop all but the largest piece (and vertices on no face)
+  /// keep_largest_component refuses (several_pieces) when the pieces it would drop hold more than this fraction
+  /// of the area (then they are parts of the shape rather than debris). 1 = drop whatever is not the largest.
+  double max_dropped_area_fraction = 1.0;
   bool close_small_holes = false;            ///< fill boundary loops of at most max_hole_edges edges
   index_t max_hole_edges = 64;
 
-  /// Every repair on (what `shapestruct match` does unless --strict).
+  /// Every repair on, dropping only pieces that hold at most 5 % of the area: the safe repairs `shapestruct
+  /// match` makes unless --strict.
   [[nodiscard]] static sphere_repair_options all(index_t max_hole_edges = 64) {
-    return {true, true, true, true, max_hole_edges};
+    sphere_repair_options o;
+    o.remove_bad_faces = o.split_non_manifold_vertices = o.keep_largest_component = o.close_small_holes = true;
+    o.max_hole_edges = max_hole_edges;
+    o.max_dropped_area_fraction = 0.05;
+    return o;
   }
 };
 
@@ -74,7 +82,7 @@ struct sphere_repair_report {
     if (duplicate_faces_removed) add("removed " + count(duplicate_faces_removed, "duplicate face", "duplicate faces"));
     if (non_manifold_vertices_split) add("split " + count(non_manifold_vertices_split, "non-manifold vertex", "non-manifold vertices"));
     if (pieces_dropped)
-      add("dropped " + count(pieces_dropped, "small piece", "small pieces") + " (" +
+      add("dropped " + count(pieces_dropped, "smaller piece", "smaller pieces") + " (" +
           count(vertices_dropped - stray_vertices_dropped, "vertex", "vertices") + ", " + count(faces_dropped, "face", "faces") + ")");
     if (stray_vertices_dropped) add("dropped " + count(stray_vertices_dropped, "vertex on no face", "vertices on no face"));
     return out;
@@ -154,6 +162,14 @@ template <class Scalar>
     for (index_t f = 0; f < m.F.rows(); ++f) has_face[static_cast<std::size_t>(cc.face_label(f))] = 1;
     const index_t pieces = static_cast<index_t>(std::count(has_face.begin(), has_face.end(), char(1)));
     auto r = keep_largest_component(m);
+    const double before = double(total_area<Scalar>(m.V, m.F, validation_level::trust));
+    const double dropped = 1.0 - double(total_area<Scalar>(r.mesh.V, r.mesh.F, validation_level::trust)) / before;
+    if (dropped > options.max_dropped_area_fraction)
+      throw mesh_defect_error(input_error::unsupported_topology, mesh_defect::several_pieces, no_index, who,
+                              "the mesh has " + std::to_string(pieces) + " pieces and those other than the largest hold " +
+                                  std::to_string(int(std::lround(100 * dropped))) +
+                                  " % of its area, so they are parts of the shape rather than debris",
+                              "dropping them needs max_dropped_area_fraction >= " + detail::short_number(dropped));
     rep.pieces_dropped = pieces - 1;
     rep.stray_vertices_dropped = cc.count - pieces;
     rep.vertices_dropped = r.removed_vertices;
