@@ -2,7 +2,11 @@
 // shapestruct match: blended intrinsic maps between two closed genus-0 meshes.
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <fstream>
+#include <future>
+#include <optional>
+#include <utility>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -68,14 +72,14 @@ std::string remedy_of(mesh_defect defect, const match_options& m) {
   return "";
 }
 
-/// Prepares one mesh for matching; a defect is reported with the file, the problem (naming the element) and
-/// the tool's switch that repairs it. The repairs made are said on stderr.
+/// Prepares one mesh for matching with `threads` threads; a defect is reported with the file, the problem
+/// (naming the element) and the tool's switch that repairs it.
 blended_shape<double> prepare_or_explain(const blended_matcher<>& matcher, const triangle_mesh<double>& mesh,
-                                         const std::string& path, const match_options& m) {
+                                         const std::string& path, const match_options& m, int threads) {
   try {
-    auto shape = matcher.prepare(mesh);
-    if (shape.repairs().any()) std::fprintf(stderr, "match: repaired %s: %s\n", path.c_str(), shape.repairs().to_string().c_str());
-    return shape;
+    auto o = matcher.options().shape;
+    o.threads = threads;
+    return make_blended_shape(mesh, o);
   } catch (const mesh_defect_error& e) {
     throw mesh_defect_error(e.reason(), e.defect(), e.element(), path, e.problem(), remedy_of(e.defect(), m));
   } catch (const invalid_input& e) {
@@ -149,8 +153,24 @@ int run_match(const match_options& m) {
   if (verbose) std::fprintf(stderr, "read %s (%ld vertices) and %s (%ld vertices)\n", pos[0].c_str(), long(A.V.rows()),
                             pos[1].c_str(), long(B.V.rows()));
   const auto t0 = std::chrono::steady_clock::now();
-  const auto sa = prepare_or_explain(matcher, A, pos[0], m);
-  const auto sb = prepare_or_explain(matcher, B, pos[1], m);
+  // The two shapes are prepared side by side, each with half the threads: their stages are only partly
+  // parallel, so this is faster than one after the other with all threads (the results do not depend on it).
+  const int threads = static_cast<int>(detail::resolve_threads(o.threads, "match"));
+  auto future_a = std::async(threads > 1 ? std::launch::async : std::launch::deferred,
+                             [&] { return prepare_or_explain(matcher, A, pos[0], m, std::max(1, threads / 2)); });
+  std::optional<blended_shape<double>> prepared_b;
+  std::exception_ptr b_failed;
+  try {
+    prepared_b = prepare_or_explain(matcher, B, pos[1], m, std::max(1, threads - threads / 2));
+  } catch (...) {
+    b_failed = std::current_exception();
+  }
+  const auto sa = future_a.get();  // SRC's error first when both fail
+  if (b_failed) std::rethrow_exception(b_failed);
+  const auto& sb = *prepared_b;
+  for (const auto& [shape, path] : {std::pair{&sa, pos[0]}, std::pair{&sb, pos[1]}})
+    if (shape->repairs().any())
+      std::fprintf(stderr, "match: repaired %s: %s\n", path.c_str(), shape->repairs().to_string().c_str());
   if (verbose)
     std::fprintf(stderr, "  %-12s %8.3f s (features: %zu and %zu)\n", "preprocess",
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), sa.features().size(),
