@@ -41,15 +41,6 @@ mesh_defect_error defect_of(const triangle_mesh<double>& m, const blended_shape_
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
-triangle_mesh<double> without_faces(const triangle_mesh<double>& m, std::vector<index_t> drop) {
-  triangle_mesh<double> out;
-  out.V = m.V;
-  out.F.resize(m.F.rows() - static_cast<index_t>(drop.size()), 3);
-  index_t g = 0;
-  for (index_t f = 0; f < m.F.rows(); ++f)
-    if (std::find(drop.begin(), drop.end(), f) == drop.end()) out.F.row(g++) = m.F.row(f);
-  return out;
-}
 
 /// A face sharing an edge with face 0.
 index_t neighbour_of_face0(const triangle_mesh<double>& m) {
@@ -74,7 +65,7 @@ TEST_CASE("blended_shape: a clean mesh needs no repair, and none is reported") {
 
 TEST_CASE("blended_shape repair: holes are filled and their sizes reported") {
   const auto sphere = make_icosphere(2);
-  const auto holed = without_faces(sphere, {0, neighbour_of_face0(sphere)});  // one hole of 4 edges
+  const auto holed = test::without_faces(sphere, {0, neighbour_of_face0(sphere)});  // one hole of 4 edges
   const auto e = defect_of(holed, small());
   CHECK(e.defect() == mesh_defect::hole);
   CHECK(e.reason() == input_error::unsupported_topology);

@@ -13,16 +13,7 @@ using namespace shapestruct;
 
 namespace {
 
-/// The mesh without the listed faces (vertices kept).
-triangle_mesh<double> without_faces(const triangle_mesh<double>& m, std::vector<index_t> drop) {
-  triangle_mesh<double> out;
-  out.V = m.V;
-  out.F.resize(m.F.rows() - static_cast<index_t>(drop.size()), 3);
-  index_t g = 0;
-  for (index_t f = 0; f < m.F.rows(); ++f)
-    if (std::find(drop.begin(), drop.end(), f) == drop.end()) out.F.row(g++) = m.F.row(f);
-  return out;
-}
+using test::without_faces;
 
 /// The faces of m around vertex v.
 std::vector<index_t> faces_around(const triangle_mesh<double>& m, index_t v) {

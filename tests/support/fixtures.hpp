@@ -2,6 +2,7 @@
 // Procedural test meshes, tagged by property: valid closed genus-0, other topologies, and defective ones.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <vector>
@@ -87,6 +88,17 @@ triangle_mesh<Scalar> with_bad_index() {
 template <class Scalar = double>
 std::vector<triangle_mesh<Scalar>> closed_genus0_meshes() {
   return {tetrahedron<Scalar>(), octahedron<Scalar>(), make_icosphere<Scalar>(2)};
+}
+
+/// The mesh without the listed faces (vertices kept): holes built to order.
+inline triangle_mesh<double> without_faces(const triangle_mesh<double>& m, const std::vector<index_t>& drop) {
+  triangle_mesh<double> out;
+  out.V = m.V;
+  out.F.resize(m.F.rows() - static_cast<index_t>(drop.size()), 3);
+  index_t g = 0;
+  for (index_t f = 0; f < m.F.rows(); ++f)
+    if (std::find(drop.begin(), drop.end(), f) == drop.end()) out.F.row(g++) = m.F.row(f);
+  return out;
 }
 
 }  // namespace shapestruct::test
