@@ -129,7 +129,6 @@ class blended_shape {
     scale_ = std::sqrt(area);
     mesh_.V = m.V / scale_;
     mesh_.F = m.F;
-    flat_ = mid_edge_flattening<Scalar>(mesh_.V, mesh_.F, options.flattening, validation_level::trust);
     geo_ = std::make_shared<dijkstra_geodesics<Scalar>>(mesh_.V, mesh_.F);
     const index_t nv = mesh_.V.rows();
     const index_t S = std::min(options.num_samples, nv);
@@ -148,15 +147,16 @@ class blended_shape {
     if (static_cast<index_t>(maxima.size()) > options.max_features) maxima.resize(static_cast<std::size_t>(options.max_features));
     features_ = std::move(maxima);
     feature_table_ = geo_->distance_table(std::span<const index_t>(features_), options.threads);
-    if (options.flattening.cut_face == no_index && options.cut_clearance > 0) {
-      const index_t cut = detail::cut_face_away_from_features<Scalar>(mesh_.V, mesh_.F, flat_.cut_face(), feature_table_,
-                                                                      agd_, Scalar(options.cut_clearance));
-      if (cut != flat_.cut_face()) {
-        mid_edge_flattening_options fo = options.flattening;
-        fo.cut_face = cut;
-        flat_ = mid_edge_flattening<Scalar>(mesh_.V, mesh_.F, fo, validation_level::trust);
-      }
+    // The flattening is built once, after the features, with its cut already chosen: the automatic cut is the
+    // largest face (the flattening's own rule), moved away from the features when it is too close to one.
+    mid_edge_flattening_options fo = options.flattening;
+    if (fo.cut_face == no_index && options.cut_clearance > 0) {
+      index_t largest = 0;
+      face_areas<Scalar>(mesh_.V, mesh_.F, validation_level::trust).maxCoeff(&largest);
+      fo.cut_face = detail::cut_face_away_from_features<Scalar>(mesh_.V, mesh_.F, largest, feature_table_, agd_,
+                                                                Scalar(options.cut_clearance));
     }
+    flat_ = mid_edge_flattening<Scalar>(mesh_.V, mesh_.F, fo, validation_level::trust);
     // Interpolation weights: the K nearest samples of every vertex, Gaussian in geodesic distance.
     const index_t K = std::min(options.interpolation_samples, S);
     interp_index_.resize(nv, K);
