@@ -153,8 +153,8 @@ int run_match(const match_options& m) {
   if (verbose) std::fprintf(stderr, "read %s (%ld vertices) and %s (%ld vertices)\n", pos[0].c_str(), long(A.V.rows()),
                             pos[1].c_str(), long(B.V.rows()));
   const auto t0 = std::chrono::steady_clock::now();
-  // The two shapes are prepared side by side, each with half the threads: their stages are only partly
-  // parallel, so this is faster than one after the other with all threads (the results do not depend on it).
+  // As blended_matcher::match(a, b) does: side by side, each with half the threads; here each failure is
+  // explained in the tool's terms first.
   const int threads = static_cast<int>(detail::resolve_threads(o.threads, "match"));
   auto future_a = std::async(threads > 1 ? std::launch::async : std::launch::deferred,
                              [&] { return prepare_or_explain(matcher, A, pos[0], m, std::max(1, threads / 2)); });
