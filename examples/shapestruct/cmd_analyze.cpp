@@ -31,6 +31,7 @@
 #include "process_group.hpp"
 #include "progress_display.hpp"
 #include "report_fuzzy.hpp"
+#include "short_faces_json.hpp"
 #include "templates_run.hpp"
 #include "thumbnail.hpp"
 #include "shapestruct/core/check_mesh.hpp"
@@ -170,9 +171,7 @@ void run_inspect_stage(const analyze_settings& s, const std::vector<fs::path>& f
       const auto mf = read_mesh(files[i]);
       const mesh_report r = check_mesh(mf.mesh, options);
       report_json = r.to_json();
-      if (mf.short_faces > 0)  // the same keys as `shapestruct inspect --json`
-        short_faces_json = "\"short_faces\":" + std::to_string(mf.short_faces) + ",\"first_short_face_" +
-                           (mf.short_face_at_is_byte_offset ? "byte" : "line") + "\":" + std::to_string(mf.first_short_face_at) + ",";
+      short_faces_json = cli::short_faces_json_fields(mf);  // the same keys as `shapestruct inspect --json`
       if (!r.shape_problem.empty()) c.reason = r.shape_problem;
       else if (r.num_faces == 0 || r.num_vertices == 0) c.reason = "empty: no faces";
       else if (r.num_non_finite_vertices > 0) c.reason = std::to_string(r.num_non_finite_vertices) + " non-finite vertices";

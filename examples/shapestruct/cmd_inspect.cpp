@@ -10,6 +10,7 @@
 
 #include "command.hpp"
 #include "option_checks.hpp"
+#include "short_faces_json.hpp"
 #include "shapestruct/core/check_mesh.hpp"
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/geometry/sphere_repair.hpp"
@@ -106,8 +107,7 @@ int run_inspect(const inspect_options& o) {
       if (mf.short_faces > 0) {
         const std::string at = (mf.short_face_at_is_byte_offset ? "byte " : "line ") + std::to_string(mf.first_short_face_at);
         short_faces_text = "  faces with fewer than 3 corners: " + std::to_string(mf.short_faces) + " (not in the mesh; the first at " + at + ")\n";
-        short_faces_json = "\"short_faces\":" + std::to_string(mf.short_faces) + ",\"first_short_face_" +
-                           (mf.short_face_at_is_byte_offset ? "byte" : "line") + "\":" + std::to_string(mf.first_short_face_at) + ",";
+        short_faces_json = cli::short_faces_json_fields(mf);
       }
     } catch (const io_error& e) {
       error = e.what();
