@@ -83,11 +83,6 @@ blended_shape<double> prepare_or_explain(const blended_matcher<>& matcher, const
   } catch (const mesh_defect_error& e) {
     throw mesh_defect_error(e.reason(), e.defect(), e.element(), path, e.problem(), remedy_of(e.defect(), m));
   } catch (const invalid_input& e) {
-    // validate_mesh under --strict: a face repeating a corner
-    if (m.strict && e.reason() == input_error::bad_face && std::string(e.what()).find("repeats a vertex") != std::string::npos)
-      throw mesh_defect_error(e.reason(), mesh_defect::collapsed_face, e.element(), path,
-                              "face " + std::to_string(e.element()) + " repeats a vertex (it has no area)",
-                              remedy_of(mesh_defect::collapsed_face, m));
     throw invalid_input(e.reason(), e.element(), path + ": " + e.what());
   }
 }

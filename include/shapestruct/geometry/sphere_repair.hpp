@@ -143,6 +143,12 @@ template <class Scalar>
     rep.duplicate_faces_removed = r.duplicate_faces;
     m = std::move(r.mesh);
   }
+  if (!options.remove_bad_faces)  // the same check validate_mesh makes, typed so that callers can name the repair
+    for (index_t f = 0; f < m.F.rows() && m.F.cols() == 3; ++f)
+      if (m.F(f, 0) == m.F(f, 1) || m.F(f, 1) == m.F(f, 2) || m.F(f, 0) == m.F(f, 2))
+        throw mesh_defect_error(input_error::bad_face, mesh_defect::collapsed_face, f, who,
+                                "face " + std::to_string(f) + " repeats a vertex (it has no area)",
+                                "the repair remove_bad_faces removes such faces");
   validate_mesh(m.V, m.F, who);
   // Coordinates whose squares overflow make every length and area infinite: say so, not "zero area".
   if (!std::isfinite(total_area<Scalar>(m.V, m.F, validation_level::trust)))
