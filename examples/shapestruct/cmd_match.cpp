@@ -39,6 +39,8 @@ struct match_options {
   bool close_holes = false;  // with --strict: allow this one repair
   bool keep_largest = false;
   long long max_hole_edges = 64;
+  std::string refine = "zoomout";  // refinement of the blended map
+  long long refine_basis = zoomout_options{}.final_size;
   long long threads = 0;
   bool verbose = false;
 };
@@ -136,7 +138,11 @@ int run_match(const match_options& m) {
   cands.options.max_maps = max_enumerated;
   cands.options.seed = static_cast<std::uint64_t>(seed);
   cands.options.pruning = pruning == "random" ? triplet_pruning::random : triplet_pruning::feature_distances;
-  const blended_matcher<> matcher(o, cands);
+  o.refine = m.refine == "zoomout";
+  zoomout_options zoomout;
+  zoomout.final_size = m.refine_basis;
+  zoomout.initial_size = std::min(zoomout.initial_size, zoomout.final_size);
+  const blended_matcher<> matcher(o, cands, {}, {}, zoomout_refiner(zoomout));
 
   const auto read_noting = [](const std::string& path) {
     auto file = read_mesh(std::filesystem::path(path));
@@ -271,6 +277,16 @@ command_fn setup_match(CLI::App& app) {
   app.add_option("--max-hole-edges", m->max_hole_edges, "longest hole (boundary loop, in edges) that is filled (default 64)")
       ->type_name("N")
       ->check(at_least(3LL));
+  app.add_option("--refine", m->refine,
+                 "refine the blended map with ZoomOut (spectral upsampling of its functional map;\n"
+                 "default), or leave it as blended (none)")
+      ->type_name("zoomout|none")
+      ->check(one_of({"zoomout", "none"}));
+  app.add_option("--refine-basis", m->refine_basis,
+                 "Laplace-Beltrami eigenfunctions ZoomOut ends with (default " +
+                     std::to_string(zoomout_options{}.final_size) + "; more is sharper and slower)")
+      ->type_name("K")
+      ->check(at_least(2LL));
   app.add_option("--threads", m->threads, "worker threads, 0 = all cores (default 0)")->type_name("T")->check(at_least(0LL));
   app.add_flag("-v,--verbose", m->verbose, "progress and timings per stage on stderr");
   app.footer(
@@ -280,6 +296,7 @@ command_fn setup_match(CLI::App& app) {
       "on stderr what it changed;\n"
       "--strict refuses instead. A defect no repair removes (a handle, a non-manifold edge) is refused with\n"
       "the file, the element and the reason.\n"
+      "The blended map is then refined by ZoomOut (Melzi et al. 2019) unless --refine none.\n"
       "Writes the benchmark's dense map: one line per SRC vertex, the 0-based TGT vertex it maps to (a vertex\n"
       "on a dropped piece takes the image of its nearest kept vertex).");
   return [m] { return run_match(*m); };

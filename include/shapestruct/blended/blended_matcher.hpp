@@ -26,7 +26,9 @@
 #include "shapestruct/core/concepts/surface_mesh.hpp"
 #include "shapestruct/core/status.hpp"
 #include "shapestruct/core/triangle_mesh.hpp"
+#include "shapestruct/core/concepts/map_refiner.hpp"
 #include "shapestruct/maps/surface_map.hpp"
+#include "shapestruct/refine/zoomout_refiner.hpp"
 #include "shapestruct/spectral/top_eigenpairs.hpp"
 
 namespace shapestruct {
@@ -80,6 +82,9 @@ struct blended_matcher_options {
   /// the flip's and the truth's mismatch differ by less than the noise, so it is off (0) by default;
   /// docs/blended_maps.md has the measurements.
   double convexity_weight = 0.0;
+  /// Apply the Refiner policy (zoomout_refiner by default) to the selected blended map; the unrefined map stays
+  /// in blended_match_result::blended[selected].map.
+  bool refine = true;
   int threads = 0;             ///< std::threads, 0 = all cores; the result does not depend on it
   /// Progress callback (stage name, seconds spent in it); the library never prints.
   std::function<void(const std::string&, double)> on_stage{};
@@ -142,18 +147,19 @@ struct blended_match_result {
 /// Models PairwiseMatcher. Per-shape work is in blended_shape: prepare() each shape once and call match() on
 /// the prepared shapes to match one shape against many.
 template <class Candidates = triplet_candidates, class Confidence = area_confidence,
-          class Consistency = geodesic_consistency>
+          class Consistency = geodesic_consistency, MapRefiner<double> Refiner = zoomout_refiner>
 class blended_matcher {
  public:
   using scalar_type = double;
 
   blended_matcher() = default;
   explicit blended_matcher(blended_matcher_options options, Candidates candidates = {}, Confidence confidence = {},
-                           Consistency consistency = {})
+                           Consistency consistency = {}, Refiner refiner = {})
       : options_(std::move(options)),
         candidates_(std::move(candidates)),
         confidence_(std::move(confidence)),
-        consistency_(std::move(consistency)) {}
+        consistency_(std::move(consistency)),
+        refiner_(std::move(refiner)) {}
 
   [[nodiscard]] const blended_matcher_options& options() const noexcept { return options_; }
 
@@ -241,15 +247,18 @@ class blended_matcher {
     const index_t best = select(out.blended);
     out.selected = best;
     auto& chosen = out.blended[static_cast<std::size_t>(best)];
-    if (chosen.map.points.empty()) {
-      // Re-blending at every vertex: keep the area score of the scored face subset, which the selection used
-      // (the sample measures do not change: the samples are blended alike in both passes).
-      const Scalar score = chosen.score;
-      blend(a, b, out, chosen, false);
-      chosen.score = score;
-    }
+    // Re-blending at every vertex: keep the area score of the scored face subset, which the selection used
+    // (the sample measures do not change: the samples are blended alike in both passes).
+    const Scalar score = chosen.score;
+    surface_map<Scalar> internal = blend(a, b, out, chosen, false);
+    chosen.score = score;
     out.map = chosen.map;
     stage("blending", t);
+    if (options_.refine) {
+      t = clock::now();
+      out.map = to_input_numbering(a, b, refiner_.refine(a.mesh(), b.mesh(), internal, options_.threads));
+      stage("refinement", t);
+    }
     return out;
   }
 
@@ -337,8 +346,9 @@ class blended_matcher {
   /// Ch. 3.3.5: f(p) = projection onto the target of sum_i c_i(p) m_i(p) / sum_i c_i(p) over the group (binary
   /// weights), c_i interpolated from the samples; then the blended map's own area preservation as its score.
   /// With score_only, the map is evaluated only at the corners of the scored faces and not stored.
-  void blend(const blended_shape<double>& a, const blended_shape<double>& b, const blended_match_result<double>& r,
-             blended_candidate<double>& bc, bool score_only) const {
+  /// Returns the map in the shapes' internal numbering (empty with score_only); bc.map is in the input numbering.
+  surface_map<double> blend(const blended_shape<double>& a, const blended_shape<double>& b,
+                            const blended_match_result<double>& r, blended_candidate<double>& bc, bool score_only) const {
     using Scalar = double;
     const auto& Va = a.mesh().V;
     const auto& Fa = a.mesh().F;
@@ -402,19 +412,32 @@ class blended_matcher {
     }
     bc.score = scored_area > 0 ? score / scored_area : Scalar(0);
     sample_measures(a, b, r, bc, pts);
-    if (score_only) return;
-    // Back to the input numbering (repairs may have renumbered or added vertices).
+    surface_map<Scalar> internal;
+    if (score_only) return internal;
+    internal.points = std::move(pts);
+    internal.nearest.resize(internal.points.size(), no_index);
+    for (std::size_t v = 0; v < internal.points.size(); ++v)
+      if (internal.points[v].valid()) internal.nearest[v] = internal.points[v].nearest_corner(Fb);
+    bc.map = to_input_numbering(a, b, internal);
+    return internal;
+  }
+
+  /// A map between the internal meshes back in the input numbering (repairs may have renumbered or added
+  /// vertices); `nearest` is the nearest ORIGINAL target vertex (a hole-filling vertex has no original id).
+  static surface_map<double> to_input_numbering(const blended_shape<double>& a, const blended_shape<double>& b,
+                                                const surface_map<double>& internal) {
+    const auto& Fb = b.mesh().F;
     const index_t n_out = a.original_size();
-    bc.map.points.assign(static_cast<std::size_t>(n_out), surface_point<Scalar>{});
-    bc.map.nearest.assign(static_cast<std::size_t>(n_out), no_index);
+    surface_map<double> out;
+    out.points.assign(static_cast<std::size_t>(n_out), surface_point<double>{});
+    out.nearest.assign(static_cast<std::size_t>(n_out), no_index);
     for (index_t v = 0; v < n_out; ++v) {
       const index_t iv = a.internal_vertex(v);
       if (iv == no_index) continue;
-      const auto& p = pts[static_cast<std::size_t>(iv)];
+      const auto& p = internal.points[static_cast<std::size_t>(iv)];
       if (!p.valid()) continue;
-      // Report the nearest ORIGINAL target vertex (a hole-filling vertex has no original id).
       index_t best = no_index;
-      Scalar bw = -1;
+      double bw = -1;
       for (int k = 0; k < 3; ++k) {
         const index_t tv = b.original_vertex(Fb(p.face, k));
         if (tv != no_index && p.bary[k] > bw) {
@@ -422,9 +445,10 @@ class blended_matcher {
           best = tv;
         }
       }
-      bc.map.points[static_cast<std::size_t>(v)] = p;
-      bc.map.nearest[static_cast<std::size_t>(v)] = best;
+      out.points[static_cast<std::size_t>(v)] = p;
+      out.nearest[static_cast<std::size_t>(v)] = best;
     }
+    return out;
   }
 
   /// Ranks the groups' blended maps (blended_candidate::selection_rank) and returns the selected one.
@@ -530,6 +554,7 @@ class blended_matcher {
   Candidates candidates_{};
   Confidence confidence_{};
   Consistency consistency_{};
+  Refiner refiner_{};
 };
 
 }  // namespace shapestruct

@@ -31,11 +31,20 @@ namespace shapestruct {
 
 /// Options of intrinsic_aligner.
 struct intrinsic_alignment_options {
-  blended_matcher_options matcher{};  ///< the blended matcher (its threads are forced to 1: pairs run in parallel)
+  /// The blended matcher (its threads are forced to 1: pairs run in parallel). Its refinement is off here: the
+  /// alignment reads every group's map, not only the selected one, and the refiner would recompute both shapes'
+  /// Laplace-Beltrami bases for every pair.
+  blended_matcher_options matcher = unrefined();
   double sigma_fraction = 0.3;        ///< sigma_intrinsic(S) = 0.3 sqrt(area(S)) (ch. 4.3.4)
   index_t max_entries_per_row = 16;   ///< a(p_i, .) keeps this many largest entries per row
   float keep_fraction = 1e-3f;        ///< and drops entries below this fraction of the row's largest
   index_t cache_shapes = 24;          ///< prepared shapes kept in memory (each a few MB per 10k vertices)
+
+  static blended_matcher_options unrefined() {
+    blended_matcher_options o;
+    o.refine = false;
+    return o;
+  }
 };
 
 namespace detail {
