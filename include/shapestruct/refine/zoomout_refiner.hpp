@@ -25,30 +25,40 @@
 
 namespace shapestruct {
 
-/// How the last, full-resolution point map is searched in the spectral embedding.
+/// How point maps are searched in the spectral embedding.
 enum class zoomout_dense_search {
-  /// Each source vertex looks only at the target vertices near the images of its nearest source samples (a
-  /// continuous map moves little between neighbouring points). Measured to agree with `exact` on nearly every
-  /// vertex at a small fraction of its cost (docs/blended_maps.md).
+  /// A point first finds the nearest target farthest-point sample, then the nearest target vertex within
+  /// zoomout_options::local_radius of it (a source vertex: of the samples found by its local_seeds nearest source
+  /// samples). Measured to agree with `exact` on nearly every vertex at a small fraction of its cost
+  /// (docs/blended_maps.md).
   local,
-  /// Every source vertex against every target vertex: O(#Va #Vb k), the reference.
+  /// Every query against every target vertex: O(#queries #Vb k), the reference.
   exact,
 };
 
 /// Options of zoomout_refiner (ZoomOut, Melzi et al. 2019, with its sub-sampled iterations).
 struct zoomout_options {
   index_t initial_size = 20;  ///< size of the functional map read from the input map (k0)
-  index_t final_size = 60;    ///< size after upsampling: Laplace-Beltrami eigenfunctions per shape (k_max)
+  index_t final_size = 100;   ///< size after upsampling: Laplace-Beltrami eigenfunctions per shape (k_max)
   index_t step = 5;           ///< eigenfunctions added per iteration
-  /// The iterations alternate point maps and functional maps on this many farthest-point samples per shape
-  /// (0 = every vertex); only the final point map is computed at every source vertex.
+  /// The iterations alternate point maps and functional maps on this many farthest-point samples of the source
+  /// (and as many target samples guide the local search); 0 = every vertex. Only the final point map is computed
+  /// at every source vertex.
   index_t samples = 2000;
   zoomout_dense_search dense_search = zoomout_dense_search::local;
-  /// zoomout_dense_search::local: a source vertex's candidates are the target vertices within this many
-  /// target-sample covering radii of the images of its `local_seeds` nearest source samples.
+  /// zoomout_dense_search::local: the neighbourhood of a target sample is the target vertices within this many
+  /// covering radii of the target samples; a source vertex searches those of the coarse images of its
+  /// `local_seeds` nearest source samples.
   double local_radius = 3.0;
   index_t local_seeds = 3;
-  laplace_beltrami_options basis{};
+  /// The bases need no more than this: a looser tolerance than the solver's default saves a Lanczos restart.
+  laplace_beltrami_options basis = loose_basis();
+
+  static laplace_beltrami_options loose_basis() {
+    laplace_beltrami_options o;
+    o.tolerance = 1e-5;
+    return o;
+  }
 };
 
 /// What zoomout_refiner::refine_with_bases returns.
@@ -124,37 +134,59 @@ class zoomout_refiner {
     }
     matrix_x<Scalar> C = Pa.leftCols(k0).transpose() * weight.asDiagonal() * pulled;
 
-    // Iterations on farthest-point samples of both shapes.
+    // Iterations on farthest-point samples of the source. A sample's image is searched in two steps: the nearest
+    // target sample in the embedding (global, so a wrong region can still move anywhere), then the nearest target
+    // vertex around it (local, so the images, and the functional map fitted to them, are not quantised to the
+    // target samples' spacing).
     const auto sample = [&](const triangle_mesh<Scalar>& m) {
       const index_t n = options_.samples > 0 ? std::min(options_.samples, m.V.rows()) : m.V.rows();
       return farthest_point_sampling<Scalar>(m.V, n, 0);
     };
     const auto fa = sample(a), fb = sample(b);
-    const Eigen::MatrixXf Sa = rows_of(Pa, fa.indices, K), Sb = rows_of(Pb, fb.indices, K);
-    std::vector<index_t> image;
+    const bool exhaustive = options_.dense_search == zoomout_dense_search::exact || options_.samples <= 0 ||
+                            fb.indices.size() >= static_cast<std::size_t>(b.V.rows());
+    const auto near = exhaustive ? std::vector<std::vector<std::uint32_t>>{} : neighbourhoods(b, fb, workers);
+    const row_major Sa = rows_of(Pa, fa.indices, K), Sb = rows_of(Pb, fb.indices, K);
+    const row_major Pbf = Pb.leftCols(K).template cast<float>();
+    const auto images = [&](const row_major& queries, index_t k, const std::vector<std::vector<index_t>>& seeds) {
+      const row_major Eb = embed(Pbf, C, k);
+      if (exhaustive) return nearest_rows(queries.leftCols(k), Eb, workers);
+      return nearest_among(queries.leftCols(k), Eb, near, seeds, workers);
+    };
+    const auto own_images = [&](const std::vector<index_t>& coarse) {
+      std::vector<std::vector<index_t>> seeds(coarse.size());
+      for (std::size_t i = 0; i < coarse.size(); ++i) seeds[i] = {coarse[i]};
+      return seeds;
+    };
     for (index_t k = k0; k < K;) {
-      image = nearest_rows(Sa.leftCols(k), embed(Sb, C, k), workers);
+      const auto coarse = exhaustive ? std::vector<index_t>{} : nearest_rows(Sa.leftCols(k), embed(Sb, C, k), workers);
+      const auto image = images(Sa, k, own_images(coarse));
       const index_t next = std::min(K, k + std::max<index_t>(options_.step, 1));
       matrix_x<Scalar> target(Sa.rows(), next);
-      for (index_t i = 0; i < Sa.rows(); ++i) target.row(i) = Sb.row(image[static_cast<std::size_t>(i)]).head(next).template cast<Scalar>();
+      for (index_t i = 0; i < Sa.rows(); ++i)
+        target.row(i) = Pbf.row(image[static_cast<std::size_t>(i)]).head(next).template cast<Scalar>();
       const matrix_x<Scalar> source = Sa.leftCols(next).template cast<Scalar>();
       C = source.colPivHouseholderQr().solve(target);
       k = next;
     }
     out.functional_map = C;
 
-    // The final point map at every source vertex.
-    const Eigen::MatrixXf Qa = Pa.leftCols(K).template cast<float>();
-    const Eigen::MatrixXf Eb = embed(Pb.leftCols(K).template cast<float>(), C, K);
-    std::vector<index_t> dense;
-    if (options_.dense_search == zoomout_dense_search::exact || options_.samples <= 0 ||
-        fa.indices.size() >= static_cast<std::size_t>(a.V.rows())) {
-      dense = nearest_rows(Qa, Eb, workers);
-    } else {
-      image = nearest_rows(Sa.leftCols(K), embed(Sb, C, K), workers);
-      dense = local_nearest_rows(a, b, fa, fb, image, Qa, Eb, workers);
+    // The final point map at every source vertex; locally, around the coarse images of its nearest samples.
+    const row_major Qa = Pa.leftCols(K).template cast<float>();
+    std::vector<std::vector<index_t>> seeds;
+    if (!exhaustive) {
+      const auto coarse = nearest_rows(Sa, embed(Sb, C, K), workers);
+      matrix_x3<Scalar> sample_points(static_cast<index_t>(fa.indices.size()), 3);
+      for (std::size_t i = 0; i < fa.indices.size(); ++i) sample_points.row(static_cast<index_t>(i)) = a.V.row(fa.indices[i]);
+      const knn_index<Scalar, 3> source_samples(sample_points);
+      const index_t count = std::min<index_t>(options_.local_seeds, static_cast<index_t>(fa.indices.size()));
+      seeds.resize(static_cast<std::size_t>(a.V.rows()));
+      detail::parallel_for(a.V.rows(), workers, [&](index_t v) {
+        for (index_t s : source_samples.knn(a.V.row(v).transpose(), count).indices)
+          seeds[static_cast<std::size_t>(v)].push_back(coarse[static_cast<std::size_t>(s)]);
+      }, index_t(256));
     }
-    out.map = vertex_images(b, dense);
+    out.map = vertex_images(b, images(Qa, K, seeds));
     return out;
   }
 
@@ -174,35 +206,36 @@ class zoomout_refiner {
       throw invalid_input(input_error::empty, no_index, "zoomout_refiner: both meshes need faces");
   }
 
+  using row_major = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
   template <class Scalar>
-  static Eigen::MatrixXf rows_of(const matrix_x<Scalar>& P, const std::vector<index_t>& rows, index_t k) {
-    Eigen::MatrixXf out(static_cast<Eigen::Index>(rows.size()), k);
+  static row_major rows_of(const matrix_x<Scalar>& P, const std::vector<index_t>& rows, index_t k) {
+    row_major out(static_cast<Eigen::Index>(rows.size()), k);
     for (std::size_t i = 0; i < rows.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = P.row(rows[i]).head(k).template cast<float>();
     return out;
   }
 
   /// Target embedding Phi_b C^T restricted to the first k eigenfunctions.
-  template <class Derived, class Scalar>
-  static Eigen::MatrixXf embed(const Eigen::MatrixBase<Derived>& Pb, const matrix_x<Scalar>& C, index_t k) {
+  template <class Scalar>
+  static row_major embed(const row_major& Pb, const matrix_x<Scalar>& C, index_t k) {
     return Pb.leftCols(k) * C.topLeftCorner(k, k).transpose().template cast<float>();
   }
 
   /// For every row of Q, the index of the nearest row of D (ties: lower index), by blocks of Q on `workers`
   /// threads: |q - d|^2 = |d|^2 - 2 q.d + const, the products as one matrix multiplication per block.
-  template <class DQ, class DD>
-  static std::vector<index_t> nearest_rows(const Eigen::MatrixBase<DQ>& Q, const Eigen::MatrixBase<DD>& D, unsigned workers) {
-    const Eigen::MatrixXf Qm = Q, Dm = D;
-    const Eigen::VectorXf norms = Dm.rowwise().squaredNorm();
-    std::vector<index_t> out(static_cast<std::size_t>(Qm.rows()), 0);
+  template <class DQ>
+  static std::vector<index_t> nearest_rows(const Eigen::MatrixBase<DQ>& Q, const row_major& D, unsigned workers) {
+    const Eigen::VectorXf norms = D.rowwise().squaredNorm();
+    std::vector<index_t> out(static_cast<std::size_t>(Q.rows()), 0);
     constexpr index_t block = 256;
-    const index_t blocks = (Qm.rows() + block - 1) / block;
+    const index_t blocks = (Q.rows() + block - 1) / block;
     detail::parallel_for(blocks, workers, [&](index_t bi) {
-      const index_t begin = bi * block, count = std::min(block, Qm.rows() - begin);
-      const Eigen::MatrixXf G = Dm * Qm.middleRows(begin, count).transpose();  // #D x count
+      const index_t begin = bi * block, count = std::min(block, static_cast<index_t>(Q.rows()) - begin);
+      const Eigen::MatrixXf G = D * Q.middleRows(begin, count).transpose();  // #D x count
       for (index_t j = 0; j < count; ++j) {
         index_t best = 0;
         float best_d = std::numeric_limits<float>::infinity();
-        for (index_t i = 0; i < Dm.rows(); ++i) {
+        for (index_t i = 0; i < D.rows(); ++i) {
           const float d = norms[i] - 2.0f * G(i, j);
           if (d < best_d) {
             best_d = d;
@@ -215,45 +248,51 @@ class zoomout_refiner {
     return out;
   }
 
-  /// zoomout_dense_search::local: candidates of source vertex v = target vertices near the images of v's
-  /// nearest source samples.
+  /// The target vertices within options_.local_radius covering radii of each target sample (the sample first).
   template <class Scalar>
-  std::vector<index_t> local_nearest_rows(const triangle_mesh<Scalar>& a, const triangle_mesh<Scalar>& b,
-                                          const farthest_point_result<Scalar>& fa, const farthest_point_result<Scalar>& fb,
-                                          const std::vector<index_t>& sample_image, const Eigen::MatrixXf& Qa,
-                                          const Eigen::MatrixXf& Eb, unsigned workers) const {
-    const index_t ns = static_cast<index_t>(fa.indices.size());
-    matrix_x3<Scalar> sample_points(ns, 3);
-    for (index_t i = 0; i < ns; ++i) sample_points.row(i) = a.V.row(fa.indices[static_cast<std::size_t>(i)]);
-    const knn_index<Scalar, 3> source_samples(sample_points);
+  std::vector<std::vector<std::uint32_t>> neighbourhoods(const triangle_mesh<Scalar>& b, const farthest_point_result<Scalar>& fb,
+                                                         unsigned workers) const {
     const knn_index<Scalar, 3> target_vertices(b.V);
     const Scalar radius = static_cast<Scalar>(options_.local_radius) * (fb.radii.empty() ? Scalar(0) : fb.radii.back());
-    std::vector<std::vector<std::uint32_t>> candidates(static_cast<std::size_t>(ns));
-    detail::parallel_for(ns, workers, [&](index_t i) {
-      const index_t t = fb.indices[static_cast<std::size_t>(sample_image[static_cast<std::size_t>(i)])];
+    std::vector<std::vector<std::uint32_t>> near(fb.indices.size());
+    detail::parallel_for(static_cast<index_t>(fb.indices.size()), workers, [&](index_t j) {
+      const index_t t = fb.indices[static_cast<std::size_t>(j)];
       std::vector<std::pair<std::uint32_t, Scalar>> hits;
       target_vertices.radius_into(b.V.row(t).transpose(), radius, hits);
-      auto& c = candidates[static_cast<std::size_t>(i)];
+      auto& c = near[static_cast<std::size_t>(j)];
       c.reserve(hits.size() + 1);
       c.push_back(static_cast<std::uint32_t>(t));
       for (const auto& h : hits) c.push_back(h.first);
     });
-    const Eigen::VectorXf norms = Eb.rowwise().squaredNorm();
-    const index_t seeds = std::min(options_.local_seeds, ns);
-    std::vector<index_t> out(static_cast<std::size_t>(a.V.rows()), 0);
-    detail::parallel_for(a.V.rows(), workers, [&](index_t v) {
-      const auto near = source_samples.knn(a.V.row(v).transpose(), seeds);
+    return near;
+  }
+
+  /// For every row q of Q, the nearest row of E among the neighbourhoods of the target samples seeds[q]
+  /// (ties: lower index).
+  template <class DQ>
+  static std::vector<index_t> nearest_among(const Eigen::MatrixBase<DQ>& Q, const row_major& E,
+                                            const std::vector<std::vector<std::uint32_t>>& near,
+                                            const std::vector<std::vector<index_t>>& seeds, unsigned workers) {
+    const Eigen::VectorXf norms = E.rowwise().squaredNorm();
+    const row_major Qr = Q;
+    std::vector<index_t> out(static_cast<std::size_t>(Q.rows()), 0);
+    // Neighbourhoods of nearby seeds overlap: a per-worker stamp scores each target vertex once per query.
+    std::vector<std::vector<index_t>> seen(workers, std::vector<index_t>(static_cast<std::size_t>(E.rows()), no_index));
+    detail::parallel_for(static_cast<index_t>(Q.rows()), workers, [&](unsigned worker, index_t q) {
+      auto& stamp = seen[worker];
       index_t best = no_index;
       float best_d = std::numeric_limits<float>::infinity();
-      for (index_t s : near.indices)
-        for (std::uint32_t t : candidates[static_cast<std::size_t>(s)]) {
-          const float d = norms[t] - 2.0f * Eb.row(t).dot(Qa.row(v));
+      for (index_t s : seeds[static_cast<std::size_t>(q)])
+        for (std::uint32_t t : near[static_cast<std::size_t>(s)]) {
+          if (stamp[t] == q) continue;
+          stamp[t] = q;
+          const float d = norms[t] - 2.0f * E.row(t).dot(Qr.row(q));
           if (d < best_d || (d == best_d && static_cast<index_t>(t) < best)) {
             best_d = d;
             best = static_cast<index_t>(t);
           }
         }
-      out[static_cast<std::size_t>(v)] = best;
+      out[static_cast<std::size_t>(q)] = best;
     }, index_t(256));
     return out;
   }
