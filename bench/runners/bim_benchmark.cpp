@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
   double eigenvalue_fraction = -1, feature_radius = -1;
   std::string selection;  // empty: the library default (blended_matcher_options::selection)
   int max_eigenvectors = -1, max_groups = -1;
-  bool refine = true;
+  bool refine = true, check_refinement = true;
   zoomout_options zoomout;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -142,12 +142,13 @@ int main(int argc, char** argv) {
     } else if (a == "--zoomout-samples") zoomout.samples = std::stoi(next());
     else if (a == "--zoomout-exact") zoomout.dense_search = zoomout_dense_search::exact;
     else if (a == "--zoomout-radius") zoomout.local_radius = std::stod(next());
+    else if (a == "--no-refinement-check") check_refinement = false;
     else {
       std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec|humans|animals --out DIR [--limit N] [--stride K] "
                    "[--offset O] [--threads T] [--groups]\n"
                    "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G] [--feature-radius R]\n"
                    "  [--selection rank-sum|area|confidence] (default: the library's, confidence)\n"
-                   "  [--no-refine] [--zoomout-sizes k0,kmax,step] [--zoomout-samples N] [--zoomout-exact] [--zoomout-radius R]\n";
+                   "  [--no-refine] [--no-refinement-check] [--zoomout-sizes k0,kmax,step] [--zoomout-samples N] [--zoomout-exact] [--zoomout-radius R]\n";
       return 2;
     }
   }
@@ -181,6 +182,7 @@ int main(int argc, char** argv) {
   if (max_eigenvectors > 0) options.max_eigenvectors = max_eigenvectors;
   if (max_groups > 0) options.max_groups = max_groups;
   options.refine = refine;
+  if (!check_refinement) options.max_refined_distortion_ratio = 0;
   const blended_matcher<triplet_candidates, area_confidence, geodesic_consistency, zoomout_refiner> matcher(
       options, {}, {}, {}, zoomout_refiner(zoomout));
   std::ofstream groups_csv;
@@ -193,7 +195,8 @@ int main(int argc, char** argv) {
   std::ofstream csv(fs::path(out_dir) / (set + "_pairs.csv"));
   csv << "source,target,src_vertices,tgt_vertices,src_features,tgt_features,candidates,groups,time_total,time_prep,"
          "time_confidence,time_consistency,time_blending,time_refinement,mean,w005,w010,w025,mean_flip,w025_flip,flipped,"
-         "blended_mean,blended_w005,blended_w025,"
+         "blended_mean,blended_w005,blended_w025,blended_distortion,refined_distortion,refinement_accepted,"
+         "zoomout_mean,zoomout_w005,zoomout_w025,"
          "stored_mean,stored_w025,stored_mean_flip,stored_w025_flip,stored_time,status\n";
   std::ofstream errs(fs::path(out_dir) / (set + "_errors.tsv"));
   errs << "# method\tkind\terror\n";
@@ -324,6 +327,13 @@ int main(int argc, char** argv) {
         blended_i.push_back(p == no_index ? no_index : sb.internal_vertex(p));
       }
       const auto s_blended = summarize_errors(std::span<const double>(score(blended_i, truth_i)));
+      // The refiner's own map, whether or not the matcher kept it.
+      std::vector<index_t> zoomout_i;
+      for (index_t sp : src_pts) {
+        const index_t p = r.refined_map.points.empty() ? no_index : r.refined_map.target_vertex(sp);
+        zoomout_i.push_back(p == no_index ? no_index : sb.internal_vertex(p));
+      }
+      const auto s_zoomout = summarize_errors(std::span<const double>(score(zoomout_i, truth_i)));
       if (diagnose_groups) {
         for (std::size_t g = 0; g < r.blended.size(); ++g) {
           const auto& bc = r.blended[g];
@@ -382,17 +392,20 @@ int main(int argc, char** argv) {
           << fmt(t_blend, 3) << "," << fmt(t_refine, 3) << "," << fmt(s_raw.mean) << "," << fmt(s_raw.within_005) << "," << fmt(s_raw.within_010)
           << "," << fmt(s_raw.within_025) << "," << fmt(s_flip.mean) << "," << fmt(s_flip.within_025) << ","
           << (flipped ? 1 : 0) << "," << fmt(s_blended.mean) << "," << fmt(s_blended.within_005) << ","
-          << fmt(s_blended.within_025) << "," << fmt(st_mean) << "," << fmt(st_w025) << "," << fmt(st_mean_f) << ","
+          << fmt(s_blended.within_025) << "," << fmt(r.blended[static_cast<std::size_t>(r.selected)].geodesic_distortion)
+          << "," << fmt(r.refined_distortion) << "," << (r.refinement_accepted ? 1 : 0) << "," << fmt(s_zoomout.mean) << ","
+          << fmt(s_zoomout.within_005) << "," << fmt(s_zoomout.within_025) << "," << fmt(st_mean) << "," << fmt(st_w025) << "," << fmt(st_mean_f) << ","
           << fmt(st_w025_f) << "," << st_time << "," << status << "\n";
       csv.flush();
       errs.flush();
       std::cerr << set << " " << name << ": mean " << fmt(s_raw.mean) << " (stored " << fmt(st_mean) << "), <=0.25 "
                 << fmt(s_raw.within_025, 3) << ", <=0.05 " << fmt(s_raw.within_005, 3) << " (blended "
-                << fmt(s_blended.mean) << ", " << fmt(s_blended.within_005, 3) << "), flip mean " << fmt(s_flip.mean) << ", " << fmt(t_total, 2) << " s\n";
+                << fmt(s_blended.mean) << ", " << fmt(s_blended.within_005, 3) << (r.refinement_accepted ? "" : ", refinement undone")
+                << "), flip mean " << fmt(s_flip.mean) << ", " << fmt(t_total, 2) << " s\n";
       ++done;
     } catch (const std::exception& e) {
       ++failed;
-      csv << pr.source.name() << "," << pr.target.name() << ",,,,,,,,,,,,,,,,,,,,,,,,,,,,\"failed: " << e.what() << "\"\n";
+      csv << pr.source.name() << "," << pr.target.name() << ",,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,\"failed: " << e.what() << "\"\n";
       std::cerr << set << " " << name << ": FAILED " << e.what() << "\n";
     }
   }

@@ -12,7 +12,7 @@
 
 using namespace shapestruct;
 
-TEST_CASE("blended_matcher on SCAPE mesh000 -> mesh037 is within 10 % of the stored original result") {
+TEST_CASE("blended_matcher on SCAPE mesh000 -> mesh037, refined, errs well below the stored original result") {
   SHAPESTRUCT_REQUIRE_DATA(scape, "SCAPE");
   const auto A = read_mesh(scape / "Meshes/mesh000.off").mesh;
   const auto B = read_mesh(scape / "Meshes/mesh037.off").mesh;
@@ -28,9 +28,8 @@ TEST_CASE("blended_matcher on SCAPE mesh000 -> mesh037 is within 10 % of the sto
   const auto s = test::dense_identity_errors(sa, sb, r.map);
   const double stored = test::stored_blended_map_mean(scape, "Results_Corr_Scape", "mesh000_to_mesh037", 0.0391);
   MESSAGE("mesh000 -> mesh037: mean " << s.mean << " (stored original " << stored << "), within 0.25 " << s.within_025);
-  // On the benchmark's scale this map errs 0.0413 against the stored 0.0391: it does not beat the original on this
-  // pair. (This test used to claim it did, comparing half-scale errors, d / (2 sqrt(area)), with the stored ones.)
-  // The bound is a regression guard with a stated 10 % margin, not a claim of superiority.
-  CHECK(s.mean <= 1.10 * stored);
+  // On the benchmark's scale the blended map errs 0.0413 against the stored 0.0391; the ZoomOut refinement (on by
+  // default) brings it to 0.0166. The bound keeps a margin over that, and checks the refined map is well ahead.
+  CHECK(s.mean <= 0.6 * stored);
   CHECK(s.within_025 >= 0.99);
 }

@@ -12,6 +12,7 @@
 #include "shapestruct/core/concepts/pairwise_matcher.hpp"
 #include "shapestruct/eval/geodesic_error.hpp"
 #include "shapestruct/maps/vertex_map.hpp"
+#include "shapestruct/refine/no_refinement.hpp"
 #include "support/fixtures.hpp"
 #include "support/legacy_mesh.hpp"
 
@@ -260,4 +261,72 @@ TEST_CASE("blended_matcher keeps the max_maps most confident candidates, in enum
   std::vector<index_t> id(static_cast<std::size_t>(m.V.rows()));
   std::iota(id.begin(), id.end(), index_t(0));
   CHECK(mean_error(sm, r.map, id) < 0.02);
+}
+
+TEST_CASE("blended_matcher refines the selected blended map (ZoomOut) unless refine is off") {
+  const auto m = test::armed_sphere(4);
+  std::vector<index_t> perm;
+  const auto moved = test::moved_and_permuted(m, perm);
+  auto o = small_options();
+  const auto target = blended_matcher<>(o).prepare(moved);
+  const auto refined = blended_matcher<>(o).match(m, moved);
+  o.refine = false;
+  const auto blended = blended_matcher<>(o).match(m, moved);
+  const auto has_stage = [](const blended_match_result<double>& r, const std::string& name) {
+    return std::any_of(r.timings.begin(), r.timings.end(), [&](const auto& t) { return t.first == name; });
+  };
+  CHECK(has_stage(refined, "refinement"));
+  CHECK(!has_stage(blended, "refinement"));
+  CHECK(refined.refinement_accepted);
+  CHECK(refined.map.nearest == refined.refined_map.nearest);
+  // Without refinement the result is the selected group's map; with it, that map stays in `blended`.
+  CHECK(blended.map.nearest == blended.blended[static_cast<std::size_t>(blended.selected)].map.nearest);
+  CHECK(refined.blended[static_cast<std::size_t>(refined.selected)].map.nearest == blended.map.nearest);
+  const double e_blended = mean_error(target, blended.map, perm, 1);
+  const double e_refined = mean_error(target, refined.map, perm, 1);
+  MESSAGE("mean error blended " << e_blended << ", refined " << e_refined);
+  CHECK(e_refined < 0.5 * e_blended);
+}
+
+TEST_CASE("blended_matcher with no_refinement is the unrefined matcher") {
+  const auto m = test::armed_sphere(3);
+  std::vector<index_t> perm;
+  const auto moved = test::moved_and_permuted(m, perm);
+  auto o = small_options();
+  const auto r = blended_matcher<triplet_candidates, area_confidence, geodesic_consistency, no_refinement>(o).match(m, moved);
+  o.refine = false;
+  const auto off = blended_matcher<>(o).match(m, moved);
+  CHECK(r.map.nearest == off.map.nearest);
+}
+
+namespace {
+/// A user's MapRefiner that ruins the map: the images are reversed in vertex order, which scrambles distances.
+struct scrambling_refiner {
+  template <class Scalar>
+  surface_map<Scalar> refine(const triangle_mesh<Scalar>&, const triangle_mesh<Scalar>&, const surface_map<Scalar>& map,
+                             int) const {
+    surface_map<Scalar> out = map;
+    std::reverse(out.points.begin(), out.points.end());
+    std::reverse(out.nearest.begin(), out.nearest.end());
+    return out;
+  }
+};
+static_assert(MapRefiner<scrambling_refiner>);
+}  // namespace
+
+TEST_CASE("blended_matcher undoes a refinement that distorts distances, unless the check is off") {
+  const auto m = test::armed_sphere(3);
+  std::vector<index_t> perm;
+  const auto moved = test::moved_and_permuted(m, perm);
+  auto o = small_options();
+  using matcher_type = blended_matcher<triplet_candidates, area_confidence, geodesic_consistency, scrambling_refiner>;
+  const auto r = matcher_type(o).match(m, moved);
+  CHECK(!r.refinement_accepted);
+  CHECK(r.refined_distortion > o.max_refined_distortion_ratio * r.blended[static_cast<std::size_t>(r.selected)].geodesic_distortion);
+  CHECK(r.map.nearest == r.blended[static_cast<std::size_t>(r.selected)].map.nearest);
+  o.max_refined_distortion_ratio = 0;
+  const auto kept = matcher_type(o).match(m, moved);
+  CHECK(kept.refinement_accepted);
+  CHECK(kept.map.nearest == kept.refined_map.nearest);
+  CHECK(kept.map.nearest != kept.blended[static_cast<std::size_t>(kept.selected)].map.nearest);
 }
