@@ -148,10 +148,12 @@ struct blended_match_result {
 ///   Candidates(a, b)                    -> std::vector<candidate_map>          (triplet_candidates)
 ///   Confidence(a, b, maps, threads)     -> (#maps x #samples) c_i(p)           (area_confidence)
 ///   Consistency(a, b, maps, c, threads) -> sparse symmetric S~                 (geodesic_consistency)
+///   Refiner.refine(mesh_a, mesh_b, map, threads) -> refined surface_map       (zoomout_refiner, MapRefiner)
 /// Pipeline: candidates -> confidences -> S~ -> top eigenvectors (Spectra) -> groups of non-conflicting maps
 /// with binary weights -> one blended map per group, f(p) = closest point on the target to the confidence-weighted
 /// centroid of the candidate images (ch. 3.3.5) -> the blended map with the highest integrated confidence (the
-/// chapter's rule; blended_selection has the alternatives).
+/// chapter's rule; blended_selection has the alternatives) -> Refiner(a, b, map) on it (ZoomOut by default; undone
+/// if it distorts geodesic distances much more, see blended_matcher_options::max_refined_distortion_ratio).
 /// Symmetric flips: a flipped near-isometry forms its own group (its maps conflict with the true ones), so it is
 /// scored separately; it distorts area more at feet, knees and buttocks (the chapter's cue), and it maps bumps
 /// (nose, knee caps, toes) onto flat or hollow places, which the convexity mismatch measures.
