@@ -133,3 +133,13 @@ TEST_CASE("no_refinement returns the map it is given") {
   const auto r = no_refinement{}.refine(a, b, m, 1);
   CHECK(r.nearest == m.nearest);
 }
+
+TEST_CASE("zoomout_refiner with samples = 0 iterates on every vertex and still recovers the isometry") {
+  const auto a = test::armed_sphere(3);  // 642 vertices
+  std::vector<index_t> perm;
+  const auto b = test::moved_and_permuted(a, perm, 9);
+  auto o = small_options();
+  o.samples = 0;
+  const auto refined = zoomout_refiner(o).refine(a, b, noisy_map(b, perm, 2, 4), 2);
+  CHECK(quality(b, refined, perm).exact > 0.8);
+}

@@ -140,7 +140,11 @@ class zoomout_refiner {
     // target samples' spacing).
     const auto sample = [&](const triangle_mesh<Scalar>& m) {
       const index_t n = options_.samples > 0 ? std::min(options_.samples, m.V.rows()) : m.V.rows();
-      return farthest_point_sampling<Scalar>(m.V, n, 0);
+      if (n < m.V.rows()) return farthest_point_sampling<Scalar>(m.V, n, 0);
+      farthest_point_result<Scalar> every;  // every vertex, in order: no O(#V^2) sampling for nothing
+      every.indices.resize(static_cast<std::size_t>(n));
+      for (index_t i = 0; i < n; ++i) every.indices[static_cast<std::size_t>(i)] = i;
+      return every;
     };
     const auto fa = sample(a), fb = sample(b);
     const bool exhaustive = options_.dense_search == zoomout_dense_search::exact || options_.samples <= 0 ||
