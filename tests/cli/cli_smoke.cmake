@@ -140,14 +140,10 @@ endif()
 if(refined_lines STREQUAL blended_lines)
   message(FATAL_ERROR "the refined map is the unrefined one: the refinement changed nothing")
 endif()
-run_cli(2 out match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --refine bogus)
-if(NOT out MATCHES "--refine: must be zoomout or none, got 'bogus'")
-  message(FATAL_ERROR "match --refine bogus does not name the option:\n${out}")
-endif()
-run_cli(2 out match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --refine-basis 1)
-if(NOT out MATCHES "--refine-basis: must be >= 2, got 1")
-  message(FATAL_ERROR "match --refine-basis 1 does not name the option:\n${out}")
-endif()
+run_cli_error("bad --refine" "--refine: must be zoomout or none, got 'bogus'"
+              match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --refine bogus)
+run_cli_error("bad --refine-basis" "--refine-basis: must be >= 2, got 1"
+              match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --refine-basis 1)
 
 # templates: a bad option value is a usage error (exit code 2) naming the option, before any shape is read.
 run_cli(2 out templates ${WORK}/chairs -o ${WORK}/tpl --learn-best 0)
