@@ -142,13 +142,23 @@ int main(int argc, char** argv) {
     } else if (a == "--zoomout-samples") zoomout.samples = std::stoi(next());
     else if (a == "--zoomout-exact") zoomout.dense_search = zoomout_dense_search::exact;
     else if (a == "--zoomout-radius") zoomout.local_radius = std::stod(next());
+    else if (a == "--zoomout-basis") {  // lanczos | galerkin[,coarse functions[,refinement steps]]
+      const std::string v = next();
+      zoomout.basis.solver = v.rfind("lanczos", 0) == 0 ? laplace_beltrami_solver::lanczos : laplace_beltrami_solver::galerkin;
+      if (v.rfind("lanczos", 0) != 0 && v.rfind("galerkin", 0) != 0) {
+        std::cerr << "--zoomout-basis needs lanczos or galerkin[,M[,S]]\n";
+        return 2;
+      }
+      std::sscanf(v.c_str(), "galerkin,%td,%td", &zoomout.basis.coarse_functions, &zoomout.basis.subspace_iterations);
+    }
     else if (a == "--no-refinement-check") check_refinement = false;
     else {
       std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec|humans|animals --out DIR [--limit N] [--stride K] "
                    "[--offset O] [--threads T] [--groups]\n"
                    "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G] [--feature-radius R]\n"
                    "  [--selection rank-sum|area|confidence] (default: the library's, confidence)\n"
-                   "  [--no-refine] [--no-refinement-check] [--zoomout-sizes k0,kmax,step] [--zoomout-samples N] [--zoomout-exact] [--zoomout-radius R]\n";
+                   "  [--no-refine] [--no-refinement-check] [--zoomout-sizes k0,kmax,step] [--zoomout-samples N] [--zoomout-exact] [--zoomout-radius R]\n"
+                   "  [--zoomout-basis lanczos|galerkin[,M[,S]]] (default galerkin,600,1)\n";
       return 2;
     }
   }
