@@ -115,3 +115,17 @@ TEST_CASE("laplace_beltrami_basis, galerkin: meshes too small for the coarse spa
   REQUIRE(c.info == status::ok);
   CHECK((c.values - exact.values).norm() < 1e-10);
 }
+
+TEST_CASE("laplace_beltrami_basis, galerkin: options out of range are a bad_parameter") {
+  const auto s = make_icosphere<double>(4);
+  auto o = galerkin(300, 1);
+  o.coarse_support = 0;
+  CHECK_THROWS_AS((void)compute_laplace_beltrami_basis<double>(s.V, s.F, 8, o), invalid_input);
+  o = galerkin(300, -1);
+  CHECK_THROWS_AS((void)compute_laplace_beltrami_basis<double>(s.V, s.F, 8, o), invalid_input);
+  o = galerkin(0, 1);
+  CHECK_THROWS_AS((void)compute_laplace_beltrami_basis<double>(s.V, s.F, 8, o), invalid_input);
+  o = galerkin(300, 1);
+  o.oversampling = 0.5;
+  CHECK_THROWS_AS((void)compute_laplace_beltrami_basis<double>(s.V, s.F, 8, o), invalid_input);
+}

@@ -121,6 +121,11 @@ template <class Scalar>
   const Scalar mean_mass = std::max(mass.sum() / Scalar(n), std::numeric_limits<Scalar>::min());
   for (index_t i = 0; i < n; ++i) mass[i] = std::max(mass[i], Scalar(1e-8) * mean_mass);
   if (options.solver == laplace_beltrami_solver::galerkin) {
+    if (options.coarse_functions < 1 || !(options.coarse_support > 0) || options.subspace_iterations < 0 ||
+        !(options.oversampling >= 1))
+      throw invalid_input(input_error::bad_parameter, no_index,
+                          "laplace_beltrami_basis (galerkin): need coarse_functions >= 1, coarse_support > 0, "
+                          "subspace_iterations >= 0 and oversampling >= 1");
     auto pairs = detail::galerkin_lowest_eigenpairs<Scalar>(V, F, L, mass, k, options.coarse_functions, options.coarse_support,
                                                             options.subspace_iterations, options.oversampling,
                                                             options.tolerance, options.max_iterations);
