@@ -52,7 +52,7 @@ struct zoomout_options {
   double local_radius = 3.0;
   index_t local_seeds = 3;
   /// The bases need no more than this: the Galerkin solver with one refinement step (within 0.2 % of Lanczos on
-  /// SCAPE at a third of its cost), and a looser tolerance than the solver's default.
+  /// SCAPE in less than half its time), and a looser tolerance than the solver's default.
   laplace_beltrami_options basis = loose_basis();
 
   static laplace_beltrami_options loose_basis() {

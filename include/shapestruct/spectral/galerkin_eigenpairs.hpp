@@ -23,6 +23,24 @@
 
 namespace shapestruct::detail {
 
+/// The `k` smallest of `values` in ascending order with their columns of `vectors` (whatever order a solver
+/// returned them in; ties keep that order).
+template <class Scalar>
+void keep_lowest(vector_x<Scalar>& values, matrix_x<Scalar>& vectors, index_t k) {
+  std::vector<index_t> order(static_cast<std::size_t>(values.size()));
+  std::iota(order.begin(), order.end(), index_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](index_t x, index_t y) { return values[x] < values[y]; });
+  const index_t kept = std::min<index_t>(k, values.size());
+  vector_x<Scalar> sorted_values(kept);
+  matrix_x<Scalar> sorted_vectors(vectors.rows(), kept);
+  for (index_t j = 0; j < kept; ++j) {
+    sorted_values[j] = values[order[static_cast<std::size_t>(j)]];
+    sorted_vectors.col(j) = vectors.col(order[static_cast<std::size_t>(j)]);
+  }
+  values = std::move(sorted_values);
+  vectors = std::move(sorted_vectors);
+}
+
 /// What galerkin_lowest_eigenpairs returns: ascending values, M-orthonormal vectors (#V x k). `applicable` is
 /// false when the coarse space cannot be built well (a mesh too small for it, or more components than coarse
 /// functions); the caller then solves on every vertex instead.
@@ -44,7 +62,7 @@ struct galerkin_result {
 ///    by about lambda_j / lambda_p.
 /// On a 12,500-vertex SCAPE mesh with k = 100, m = 600 and one step: every Ritz value within 0.2 % of Lanczos on
 /// every vertex, the cosines of all principal angles between the two 100-dimensional spaces above 0.998, in
-/// about a third of the time (docs/blended_maps.md, "Speed").
+/// less than half the time (docs/blended_maps.md, "Speed").
 template <class Scalar>
 [[nodiscard]] galerkin_result<Scalar> galerkin_lowest_eigenpairs(const Eigen::Ref<const matrix_x3<Scalar>>& V,
                                                                  const Eigen::Ref<const face_matrix>& F,
@@ -126,15 +144,9 @@ template <class Scalar>
       values = ritz.eigenvalues();
     }
   }
-  std::vector<index_t> order(static_cast<std::size_t>(values.size()));
-  std::iota(order.begin(), order.end(), index_t(0));
-  std::stable_sort(order.begin(), order.end(), [&](index_t x, index_t y) { return values[x] < values[y]; });
-  out.values.resize(k);
-  out.vectors.resize(n, k);
-  for (index_t j = 0; j < k; ++j) {
-    out.values[j] = values[order[static_cast<std::size_t>(j)]];
-    out.vectors.col(j) = X.col(order[static_cast<std::size_t>(j)]);
-  }
+  keep_lowest(values, X, k);
+  out.values = std::move(values);
+  out.vectors = std::move(X);
   return out;
 }
 

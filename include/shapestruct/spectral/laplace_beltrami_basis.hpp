@@ -31,8 +31,9 @@ enum class laplace_beltrami_solver {
   /// A coarse Galerkin space of `coarse_functions` smooth bumps on farthest-point samples, solved exactly, then
   /// `subspace_iterations` shift-and-invert steps with Rayleigh-Ritz on every vertex
   /// (detail::galerkin_lowest_eigenpairs). Approximate: on SCAPE (k = 100, 600 bumps, one step) every value is
-  /// within 0.2 % of Lanczos at a third of the time. Small meshes (fewer than twice coarse_functions vertices),
-  /// and meshes with more components than bumps, fall back to lanczos.
+  /// within 0.2 % of Lanczos in less than half the time (0.42 s against 0.99 s; TOSCA cat0 0.91 s against
+  /// 2.84 s). Small meshes (fewer than twice coarse_functions vertices), and meshes with more components than
+  /// bumps, fall back to lanczos.
   galerkin,
 };
 
@@ -177,19 +178,7 @@ template <class Scalar>
     if (solver.info() != Spectra::CompInfo::Successful) out.info = status::not_converged;
     values = solver.eigenvalues();
     psi = solver.eigenvectors();
-    // Ascending eigenvalues whatever the solver's order.
-    std::vector<index_t> order(static_cast<std::size_t>(values.size()));
-    std::iota(order.begin(), order.end(), index_t(0));
-    std::stable_sort(order.begin(), order.end(), [&](index_t x, index_t y) { return values[x] < values[y]; });
-    const index_t kept = std::min<index_t>(k, values.size());
-    vector_x<Scalar> v2(kept);
-    matrix_x<Scalar> p2(psi.rows(), kept);
-    for (index_t j = 0; j < kept; ++j) {
-      v2[j] = values[order[static_cast<std::size_t>(j)]];
-      p2.col(j) = psi.col(order[static_cast<std::size_t>(j)]);
-    }
-    values = std::move(v2);
-    psi = std::move(p2);
+    detail::keep_lowest(values, psi, k);
   }
   out.values = values;
   out.vectors = inv_sqrt.asDiagonal() * psi;
