@@ -56,6 +56,10 @@ struct tuning {
   index_t iterations = -1; ///< --iterations: graph-optimisation rounds
   index_t samples = 128;   ///< --samples: K
   bool baseline = true;    ///< --no-baseline skips the all-pairs extrinsic baseline (slow: every pair aligned)
+  /// --aligner truth: align the generated shapes by the least-squares affine map of their true landmarks (the
+  /// chapter's Figure 4.7 experiment: how much the embedding itself loses when every alignment is right).
+  std::string aligner = "extrinsic";
+  double sigma = extrinsic_alignment_options{}.sigma_fraction;  ///< --sigma: sigma(S) / Diam(S) of the extrinsic scores
 };
 tuning knobs;
 
@@ -355,6 +359,37 @@ int run_scape(const fs::path& data, const fs::path& out_dir, int threads) {
 }
 
 // ---------------------------------------------------------------------------------------------- generated
+/// Least-squares affine map of the target's true landmarks onto the source's, as the one alternative of a pair.
+Eigen::Matrix<double, 3, 4> landmark_affine(const assembly<double>& source, const assembly<double>& target) {
+  std::map<std::string, Eigen::Vector3d> ls, lt;
+  for (const auto& f : source.features) ls[f.name] = f.position;
+  for (const auto& f : target.features) lt[f.name] = f.position;
+  std::vector<std::string> common;
+  for (const auto& [name, x] : ls)
+    if (lt.count(name)) common.push_back(name);
+  Eigen::MatrixXd X(common.size(), 4), Y(common.size(), 3);
+  for (std::size_t k = 0; k < common.size(); ++k) {
+    X.row(Eigen::Index(k)) << lt.at(common[k]).transpose(), 1.0;
+    Y.row(Eigen::Index(k)) = ls.at(common[k]).transpose();
+  }
+  return X.colPivHouseholderQr().solve(Y).transpose();  // 3 x 4: target -> source
+}
+
+struct true_landmark_aligner {
+  const std::vector<assembly<double>>* shapes;
+  const std::vector<shape_record>* records;
+  pair_alignment align(index_t source, index_t target) const {
+    pair_alignment out;
+    out.source = source;
+    out.target = target;
+    out.alternatives.push_back(score_extrinsic_alignment((*records)[std::size_t(source)], (*records)[std::size_t(target)],
+                                                         landmark_affine((*shapes)[std::size_t(source)],
+                                                                         (*shapes)[std::size_t(target)]),
+                                                         extrinsic_alignment_options{.sigma_fraction = knobs.sigma}));
+    return out;
+  }
+};
+
 int run_generated(const std::string& set, int count, const fs::path& out_dir, int threads, std::uint64_t seed) {
   const assembly_kind kind = set == "chairs" ? assembly_kind::chair : assembly_kind::airplane;
   const assembly_generator<double> gen(kind, seed);
@@ -370,14 +405,17 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
     records[std::size_t(i)] = make_shape_record(shapes[std::size_t(i)].mesh, set + std::to_string(i), describe, o);
   });
   const double t_records = seconds_since(t0);
-  const extrinsic_aligner aligner(records);
   fuzzy_collection_options fo;
   fo.threads = threads;
   fo.cache_folder = out_dir / "cache" / (set + std::to_string(count) + "_seed" + std::to_string(seed) + "_k" +
-                                         std::to_string(knobs.samples));
+                                         std::to_string(knobs.samples) + (knobs.aligner == "truth" ? "_truth" : "") +
+                                         "_sigma" + fmt(knobs.sigma));
   apply(fo);
   const auto t1 = clock_type::now();
-  const auto r = compute_fuzzy_correspondences(records, aligner, fo);
+  const auto r = knobs.aligner == "truth"
+                     ? compute_fuzzy_correspondences(records, true_landmark_aligner{&shapes, &records}, fo)
+                     : compute_fuzzy_correspondences(
+                           records, extrinsic_aligner(records, extrinsic_alignment_options{.sigma_fraction = knobs.sigma}), fo);
   const double t_fuzzy = seconds_since(t1);
   const std::size_t all_pairs = std::size_t(count) * std::size_t(count - 1) / 2;
   std::cout << set << " " << count << ": records " << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1)
@@ -496,6 +534,8 @@ int main(int argc, char** argv) {
     else if (a == "--iterations") knobs.iterations = std::stoi(next());
     else if (a == "--samples") knobs.samples = std::stoi(next());
     else if (a == "--no-baseline") knobs.baseline = false;
+    else if (a == "--aligner") knobs.aligner = next();
+    else if (a == "--sigma") knobs.sigma = std::stod(next());
     else {
       std::cerr << "usage: run_fuzzy_benchmark --set shrec|scape|chairs|airplanes --out DIR [--data DIR] [--classes 1,4] "
                    "[--count N] [--seed S] [--threads T]\n"
