@@ -15,6 +15,14 @@
 //       A generated collection of polygon soups with named landmarks, extrinsic: landmark error / bounding-box
 //       diagonal of the target, over all ordered pairs, for the best fuzzy correspondence, the extrinsic
 //       matcher alone on every pair, and the least-squares affine alignment of the true landmarks.
+//   run_fuzzy_benchmark --set coseg|psb --data $SHAPESTRUCT_DATA --out DIR [--classes chair,table,...] [--threads T]
+//       Label transfer on real collections, extrinsic: the 17 consistently labelled COSEG chairs (all but
+//       101, 102, 103, 109, 110), or PSB classes of 20 meshes (chair, table, airplane, cup, fourleg by default).
+//       Every shape's ground-truth labels are carried to every other shape, face by face: a target face's nearest
+//       sample, its best fuzzy correspondence (or, for the baseline, its best-scoring sample under the extrinsic
+//       matcher's alignment of that pair), and the label of the source face nearest that sample. COSEG scores
+//       the area fraction labelled right (labels are consistent across the class); PSB the area-weighted Rand
+//       index against every human segmentation of the target (the source's first human segmentation is carried).
 // Options: --aligner truth (generated sets) aligns every pair by the least-squares affine map of the true landmarks,
 // the chapter's Figure 4.7 experiment; --sigma / --intrinsic-sigma set the score widths (sigma_fraction of the
 // extrinsic and intrinsic aligners); --time, --dims, --iterations, --samples the pipeline's.
@@ -44,7 +52,11 @@
 #include "shapestruct/fuzzy/intrinsic_alignment.hpp"
 #include "shapestruct/generate/assembly_generator.hpp"
 #include "shapestruct/io/bim_benchmark_files.hpp"
+#include "shapestruct/eval/rand_index.hpp"
+#include "shapestruct/geometry/mesh_measures.hpp"
 #include "shapestruct/io/read_mesh.hpp"
+#include "shapestruct/io/segmentation_file.hpp"
+#include "shapestruct/knn/knn_index.hpp"
 
 namespace fs = std::filesystem;
 using namespace shapestruct;
@@ -62,11 +74,18 @@ struct tuning {
   /// --aligner truth: align the generated shapes by the least-squares affine map of their true landmarks (the
   /// chapter's Figure 4.7 experiment: how much the embedding itself loses when every alignment is right).
   std::string aligner = "extrinsic";
-  double sigma = extrinsic_alignment_options{}.sigma_fraction;  ///< --sigma: sigma(S) / Diam(S) of the extrinsic scores
+  extrinsic_alignment_options extrinsic;  ///< --sigma: its sigma_fraction
   /// --intrinsic-sigma: sigma_intrinsic(S) / sqrt(area(S)) of the intrinsic scores
   double intrinsic_sigma = intrinsic_alignment_options{}.sigma_fraction;
 };
 tuning knobs;
+
+/// The extrinsic score widths, for cache folder names.
+std::string extrinsic_tag() {
+  char b[96];
+  std::snprintf(b, sizeof b, "%.3f", knobs.extrinsic.sigma_fraction);
+  return b;
+}
 
 void apply(fuzzy_collection_options& fo) {
   if (knobs.time >= 0) fo.embedding.time = knobs.time;
@@ -392,7 +411,7 @@ struct true_landmark_aligner {
     out.alternatives.push_back(score_extrinsic_alignment((*records)[std::size_t(source)], (*records)[std::size_t(target)],
                                                          landmark_affine((*shapes)[std::size_t(source)],
                                                                          (*shapes)[std::size_t(target)]),
-                                                         extrinsic_alignment_options{.sigma_fraction = knobs.sigma}));
+                                                         knobs.extrinsic));
     return out;
   }
 };
@@ -416,13 +435,13 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
   fo.threads = threads;
   fo.cache_folder = out_dir / "cache" / (set + std::to_string(count) + "_seed" + std::to_string(seed) + "_k" +
                                          std::to_string(knobs.samples) + (knobs.aligner == "truth" ? "_truth" : "") +
-                                         "_sigma" + fmt(knobs.sigma));
+                                         "_sigma" + extrinsic_tag());
   apply(fo);
   const auto t1 = clock_type::now();
   const auto r = knobs.aligner == "truth"
                      ? compute_fuzzy_correspondences(records, true_landmark_aligner{&shapes, &records}, fo)
                      : compute_fuzzy_correspondences(
-                           records, extrinsic_aligner(records, extrinsic_alignment_options{.sigma_fraction = knobs.sigma}), fo);
+                           records, extrinsic_aligner(records, knobs.extrinsic), fo);
   const double t_fuzzy = seconds_since(t1);
   const std::size_t all_pairs = std::size_t(count) * std::size_t(count - 1) / 2;
   std::cout << set << " " << count << ": records " << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1)
@@ -515,6 +534,181 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
 
 }  // namespace
 
+// ---------------------------------------------------------------------------------------------- label transfer
+/// One shape of a labelled collection: its faces' labels, areas, nearest sample per face, and a label per sample.
+struct labelled_shape {
+  std::vector<index_t> truth;               ///< per face (COSEG: the class's labels; PSB: first human segmentation)
+  std::vector<std::vector<index_t>> humans; ///< PSB: every human segmentation
+  std::vector<double> area;                 ///< per face
+  std::vector<index_t> face_sample;         ///< nearest sample to each face's centroid
+  std::vector<index_t> sample_label;        ///< label of the face whose centroid is nearest each sample
+};
+
+labelled_shape label_shape(const fs::path& mesh_file, const shape_record& rec, std::vector<std::vector<index_t>> segs) {
+  const auto m = read_mesh(mesh_file).mesh;
+  labelled_shape out;
+  out.truth = segs.front();
+  out.humans = std::move(segs);
+  const Eigen::VectorXd A = face_areas<double>(m.V, m.F, validation_level::trust);
+  out.area.assign(A.data(), A.data() + A.size());
+  Eigen::Matrix<double, Eigen::Dynamic, 3> C(m.F.rows(), 3);
+  for (index_t f = 0; f < m.F.rows(); ++f) C.row(f) = (m.V.row(m.F(f, 0)) + m.V.row(m.F(f, 1)) + m.V.row(m.F(f, 2))) / 3.0;
+  const knn_index<double, 3> samples(rec.samples), centroids(C);
+  out.face_sample.resize(std::size_t(m.F.rows()));
+  for (index_t f = 0; f < m.F.rows(); ++f) out.face_sample[std::size_t(f)] = samples.nearest(C.row(f)).index;
+  out.sample_label.resize(std::size_t(rec.samples.rows()));
+  for (index_t i = 0; i < rec.samples.rows(); ++i)
+    out.sample_label[std::size_t(i)] = out.truth[std::size_t(centroids.nearest(rec.samples.row(i)).index)];
+  return out;
+}
+
+/// The target's faces labelled through a sample map target sample -> source sample.
+std::vector<index_t> transfer(const labelled_shape& source, const labelled_shape& target, const std::vector<index_t>& to_source) {
+  std::vector<index_t> out(target.face_sample.size());
+  for (std::size_t f = 0; f < out.size(); ++f)
+    out[f] = source.sample_label[std::size_t(to_source[std::size_t(target.face_sample[f])])];
+  return out;
+}
+
+/// Area fraction of faces whose label equals the truth, or the mean area-weighted Rand index over the humans.
+double label_score(const labelled_shape& target, const std::vector<index_t>& labels, bool rand) {
+  if (rand) {
+    double s = 0;
+    for (const auto& h : target.humans) s += rand_index(labels, h, target.area);
+    return s / double(target.humans.size());
+  }
+  double right = 0, all = 0;
+  for (std::size_t f = 0; f < labels.size(); ++f) {
+    all += target.area[f];
+    if (labels[f] == target.truth[f]) right += target.area[f];
+  }
+  return all > 0 ? right / all : 0;
+}
+
+int run_labels(const std::string& set, const fs::path& data, const fs::path& out_dir, const std::string& classes_arg,
+               int threads) {
+  struct collection_spec {
+    std::string name;
+    std::vector<fs::path> meshes;
+    std::vector<std::vector<fs::path>> segs;  // per mesh
+  };
+  std::vector<collection_spec> specs;
+  if (set == "coseg") {
+    const fs::path dir = data / "coseg_subset/res/chairs";
+    collection_spec c{"coseg_chairs17", {}, {}};
+    for (const int id : {0, 1, 2, 4, 9, 12, 13, 14, 15, 16, 17, 18, 19, 20, 22, 23, 24}) {
+      c.meshes.push_back(dir / "shapes" / (std::to_string(id) + ".off"));
+      c.segs.push_back({dir / "gt" / (std::to_string(id) + ".seg")});
+    }
+    specs.push_back(std::move(c));
+  } else {
+    const std::map<std::string, int> first = {{"human", 1},  {"cup", 21},     {"glasses", 41}, {"airplane", 61},
+                                              {"ant", 81},   {"chair", 101},  {"octopus", 121}, {"table", 141},
+                                              {"teddy", 161}, {"hand", 181},  {"plier", 201},  {"fish", 221},
+                                              {"bird", 241}, {"armadillo", 281}, {"bust", 301}, {"mech", 321},
+                                              {"bearing", 341}, {"vase", 361}, {"fourleg", 381}};
+    std::vector<std::string> names;
+    std::stringstream ss(classes_arg.empty() ? "chair,table,airplane,cup,fourleg" : classes_arg);
+    for (std::string item; std::getline(ss, item, ',');)
+      if (!item.empty()) names.push_back(item);
+    for (const auto& n : names) {
+      if (!first.count(n)) throw std::runtime_error("unknown PSB class '" + n + "' (--classes)");
+      collection_spec c{"psb_" + n, {}, {}};
+      for (int id = first.at(n); id < first.at(n) + 20; ++id) {
+        const std::string s = std::to_string(id);
+        c.meshes.push_back(data / "psb/data/off" / (s + ".off"));
+        std::vector<fs::path> segs;
+        for (const auto& e : fs::directory_iterator(data / "psb/data/seg/Benchmark" / s))
+          if (e.path().extension() == ".seg") segs.push_back(e.path());
+        std::sort(segs.begin(), segs.end());
+        c.segs.push_back(std::move(segs));
+      }
+      specs.push_back(std::move(c));
+    }
+  }
+  const bool rand = set == "psb";
+  std::ofstream summary(out_dir / "summary.md", std::ios::app);
+  summary << "\n## Label transfer, " << set << " (run_fuzzy_benchmark --set " << set << "), extrinsic\n\n"
+          << "Mean over ordered pairs of the " << (rand ? "area-weighted Rand index (higher is better)" : "labelled area fraction")
+          << " of the target with the source's ground truth carried over.\n\n"
+          << "| collection | shapes | pairs aligned | best fuzzy | extrinsic matcher, all pairs | fuzzy better on | fuzzy s |\n|---|---|---|---|---|---|---|\n";
+  std::ofstream csv(out_dir / (set + "_labels.csv"));
+  csv << "collection,source,target,best_fuzzy,extrinsic_all_pairs\n";
+  for (const auto& spec : specs) {
+    const auto t0 = clock_type::now();
+    collection_records_options ro;
+    ro.threads = threads;
+    ro.record.metric = sample_metric::euclidean;
+    ro.record.samples = knobs.samples;
+    const auto col = make_collection_records(spec.meshes, ro);
+    for (const auto& sk : col.skipped) std::cout << "  " << spec.name << ": left out " << sk.file.string() << ": " << sk.reason << "\n";
+    const auto& records = col.records;
+    const index_t n = index_t(records.size());
+    std::vector<labelled_shape> shapes(records.size());
+    detail::parallel_for(n, detail::resolve_threads(threads), [&](index_t k) {
+      const auto at = std::find(spec.meshes.begin(), spec.meshes.end(), col.files[std::size_t(k)]) - spec.meshes.begin();
+      const index_t faces = read_mesh(spec.meshes[std::size_t(at)]).mesh.F.rows();
+      std::vector<std::vector<index_t>> segs;
+      for (const auto& f : spec.segs[std::size_t(at)]) {
+        auto l = read_segmentation(f, faces);
+        segs.push_back(std::move(l));
+      }
+      shapes[std::size_t(k)] = label_shape(spec.meshes[std::size_t(at)], records[std::size_t(k)], std::move(segs));
+    });
+    const extrinsic_alignment_options eo = knobs.extrinsic;
+    fuzzy_collection_options fo;
+    fo.threads = threads;
+    fo.cache_folder = out_dir / "cache" / (spec.name + "_sigma" + extrinsic_tag());
+    apply(fo);
+    const auto t1 = clock_type::now();
+    const auto r = compute_fuzzy_correspondences(records, extrinsic_aligner(records, eo), fo);
+    const double t_fuzzy = seconds_since(t1);
+    std::vector<std::vector<double>> sf(records.size()), sp(records.size());
+    detail::parallel_for(n, detail::resolve_threads(threads), [&](index_t t) {
+      for (index_t s = 0; s < n; ++s) {
+        if (s == t) continue;
+        const auto& T = shapes[std::size_t(t)];
+        const auto& S = shapes[std::size_t(s)];
+        sf[std::size_t(t)].push_back(label_score(T, transfer(S, T, r.fuzzy.best_matches(t, s)), rand));
+        // The matcher alone: target t aligned to source s, each target sample to its best-scoring source sample.
+        const pair_alignment pa = align_extrinsic(records[std::size_t(t)], records[std::size_t(s)], eo);
+        const auto& scores = pa.alternatives[std::size_t(pa.initial)].scores;
+        std::vector<index_t> best(std::size_t(scores.rows()), 0);
+        for (index_t i = 0; i < scores.rows(); ++i) {
+          float top = -1;
+          for (Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>::InnerIterator it(scores, i); it; ++it)
+            if (it.value() > top) top = it.value(), best[std::size_t(i)] = it.col();
+        }
+        sp[std::size_t(t)].push_back(label_score(T, transfer(S, T, best), rand));
+      }
+    });
+    std::vector<double> f_all, p_all;
+    int better = 0;
+    for (index_t t = 0; t < n; ++t) {
+      index_t j = 0;
+      for (index_t s = 0; s < n; ++s) {
+        if (s == t) continue;
+        const double a = sf[std::size_t(t)][std::size_t(j)], b = sp[std::size_t(t)][std::size_t(j)];
+        csv << spec.name << "," << records[std::size_t(s)].name << "," << records[std::size_t(t)].name << "," << fmt(a, 4)
+            << "," << fmt(b, 4) << "\n";
+        f_all.push_back(a), p_all.push_back(b);
+        better += a > b ? 1 : 0;
+        ++j;
+      }
+    }
+    const std::size_t all_pairs = std::size_t(n) * std::size_t(n - 1) / 2;
+    summary << "| " << spec.name << " | " << n << " | " << r.pairs_aligned << " of " << all_pairs << " | "
+            << fmt(mean_of(f_all)) << " | " << fmt(mean_of(p_all)) << " | " << better << " of " << f_all.size() << " | "
+            << fmt(t_fuzzy, 1) << " |\n";
+    std::cout << spec.name << ": " << n << " shapes (records " << fmt(seconds_since(t0) - t_fuzzy, 1) << " s), fuzzy "
+              << fmt(t_fuzzy, 1) << " s, pairs aligned " << r.pairs_aligned << " of " << all_pairs << ", rounds "
+              << r.log.size() << "\n  " << (rand ? "Rand index" : "labelled area") << ": best fuzzy " << fmt(mean_of(f_all))
+              << ", extrinsic matcher all pairs " << fmt(mean_of(p_all)) << " (fuzzy better on " << better << " of "
+              << f_all.size() << " ordered pairs)\n";
+  }
+  return 0;
+}
+
 int main(int argc, char** argv) {
   std::string data_dir = std::getenv("SHAPESTRUCT_DATA") ? std::getenv("SHAPESTRUCT_DATA") : "";
   std::string set, out = "fuzzy_results", classes;
@@ -542,10 +736,10 @@ int main(int argc, char** argv) {
     else if (a == "--samples") knobs.samples = std::stoi(next());
     else if (a == "--no-baseline") knobs.baseline = false;
     else if (a == "--aligner") knobs.aligner = next();
-    else if (a == "--sigma") knobs.sigma = std::stod(next());
+    else if (a == "--sigma") knobs.extrinsic.sigma_fraction = std::stod(next());
     else if (a == "--intrinsic-sigma") knobs.intrinsic_sigma = std::stod(next());
     else {
-      std::cerr << "usage: run_fuzzy_benchmark --set shrec|scape|chairs|airplanes --out DIR [--data DIR] [--classes 1,4] "
+      std::cerr << "usage: run_fuzzy_benchmark --set shrec|scape|chairs|airplanes|coseg|psb --out DIR [--data DIR] [--classes 1,4] "
                    "[--count N] [--seed S] [--threads T]\n"
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--no-baseline]\n"
                    "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F]\n";
@@ -569,10 +763,17 @@ int main(int argc, char** argv) {
       return run_scape(data_dir, out, threads);
     }
     if (set == "chairs" || set == "airplanes") return run_generated(set, count, out, threads, seed);
+    if (set == "coseg" || set == "psb") {
+      if (data_dir.empty()) {
+        std::cerr << "--set " << set << " needs --data DIR or $SHAPESTRUCT_DATA\n";
+        return 2;
+      }
+      return run_labels(set, data_dir, out, classes, threads);
+    }
   } catch (const std::exception& e) {
     std::cerr << "run_fuzzy_benchmark: " << e.what() << "\n";
     return 1;
   }
-  std::cerr << "--set must be shrec, scape, chairs or airplanes\n";
+  std::cerr << "--set must be shrec, scape, chairs, airplanes, coseg or psb\n";
   return 2;
 }

@@ -31,7 +31,7 @@ struct shape_record {
   /// not a manifold (extrinsic collections).
   Eigen::MatrixXf sample_geodesics;
   Eigen::VectorXd descriptor;  ///< global shape descriptor (ShapeDescriptor policy), compared by L2 distance
-  /// Diam(S) of ch. 4.3.3: mean Euclidean distance between all pairs of samples; sigma(S) = a fraction of it (extrinsic_alignment_options::sigma_fraction).
+  /// Diam(S) of ch. 4.3.3: mean Euclidean distance between all pairs of samples; sigma(S) = Diam / 5.
   double diameter = 0;
   double area = 0;             ///< total surface area (0 for point clouds)
   /// Closed, connected, genus-0 surface (a manifold once pinched vertices are split): eligible for intrinsic
