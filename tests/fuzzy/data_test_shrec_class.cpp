@@ -3,7 +3,7 @@
 // blended maps along the alignment graph, fuzzy correspondences, and on the benchmark's pairs of the class the
 // consistent blended maps and the best fuzzy correspondence, scored as run_bim_benchmark scores them (feature
 // points, geodesic / sqrt(area of the target)). Measured with the defaults: consistent blended 1.000 within 0.25
-// with no flipped pair, best fuzzy 0.927 (the pairwise blended maps alone: 0.767, 5 flipped pairs; docs/fuzzy.md).
+// with no flipped pair, best fuzzy 0.964 (the pairwise blended maps alone: 0.767, 5 flipped pairs; docs/fuzzy.md).
 // About 1 minute on 2 cores. Skipped without $SHAPESTRUCT_DATA.
 #include <algorithm>
 #include <filesystem>
