@@ -385,6 +385,18 @@ int run_scape(const fs::path& data, const fs::path& out_dir, int threads) {
 }
 
 // ---------------------------------------------------------------------------------------------- generated
+/// The matcher alone: each source sample's best-scoring target sample under the pair's initial alternative.
+std::vector<index_t> best_scoring_samples(const pair_alignment& pa) {
+  const auto& scores = pa.alternatives[std::size_t(pa.initial)].scores;
+  std::vector<index_t> best(std::size_t(scores.rows()), 0);
+  for (index_t i = 0; i < scores.rows(); ++i) {
+    float top = -1;
+    for (Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>::InnerIterator it(scores, i); it; ++it)
+      if (it.value() > top) top = it.value(), best[std::size_t(i)] = it.col();
+  }
+  return best;
+}
+
 /// Least-squares affine map of the target's true landmarks onto the source's, as the one alternative of a pair.
 Eigen::Matrix<double, 3, 4> landmark_affine(const assembly<double>& source, const assembly<double>& target) {
   std::map<std::string, Eigen::Vector3d> ls, lt;
@@ -472,32 +484,19 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
       const auto& Vb = shapes[std::size_t(b)].mesh.V;
       const double diag = (Vb.colwise().maxCoeff() - Vb.colwise().minCoeff()).norm();
       const auto fuzzy_match = r.fuzzy.best_matches(a, b);
-      const pair_alignment pa = knobs.baseline ? align_extrinsic(ra, rb) : pair_alignment{};
+      const std::vector<index_t> baseline = knobs.baseline ? best_scoring_samples(align_extrinsic(ra, rb)) : std::vector<index_t>{};
       // Least-squares affine map of b's true landmarks onto a's (both directions share the landmark names).
       std::vector<std::string> common;
       for (const auto& [name, x] : la)
         if (lb.count(name)) common.push_back(name);
-      Eigen::MatrixXd X(common.size(), 4), Y(common.size(), 3);
-      for (std::size_t k = 0; k < common.size(); ++k) {
-        X.row(Eigen::Index(k)) << lb.at(common[k]).transpose(), 1.0;
-        Y.row(Eigen::Index(k)) = la.at(common[k]).transpose();
-      }
-      const Eigen::MatrixXd T = X.colPivHouseholderQr().solve(Y);  // 4 x 3: b -> a
-      Eigen::MatrixXd Bs(rb.samples.rows(), 4);
-      Bs << rb.samples, Eigen::VectorXd::Ones(rb.samples.rows());
-      const Eigen::MatrixXd Bt = Bs * T;
+      const Eigen::Matrix<double, 3, 4> T = landmark_affine(shapes[std::size_t(a)], shapes[std::size_t(b)]);  // b -> a
+      const Eigen::MatrixXd Bt = (rb.samples * T.leftCols<3>().transpose()).rowwise() + T.col(3).transpose();
       for (const auto& name : common) {
         const index_t s = nearest_sample(ra, la.at(name));
         const Eigen::Vector3d truth = lb.at(name);
         ef[std::size_t(a)].push_back((rb.samples.row(fuzzy_match[std::size_t(s)]).transpose() - truth).norm() / diag);
-        if (knobs.baseline) {
-          const auto& scores = pa.alternatives[std::size_t(pa.initial)].scores;
-          index_t best = 0;
-          float top = -1;
-          for (Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>::InnerIterator it(scores, s); it; ++it)
-            if (it.value() > top) top = it.value(), best = it.col();
-          ep[std::size_t(a)].push_back((rb.samples.row(best).transpose() - truth).norm() / diag);
-        }
+        if (knobs.baseline)
+          ep[std::size_t(a)].push_back((rb.samples.row(baseline[std::size_t(s)]).transpose() - truth).norm() / diag);
         index_t aff = 0;
         (Bt.rowwise() - ra.samples.row(s)).rowwise().squaredNorm().minCoeff(&aff);
         ea[std::size_t(a)].push_back((rb.samples.row(aff).transpose() - truth).norm() / diag);
@@ -671,14 +670,7 @@ int run_labels(const std::string& set, const fs::path& data, const fs::path& out
         const auto& S = shapes[std::size_t(s)];
         sf[std::size_t(t)].push_back(label_score(T, transfer(S, T, r.fuzzy.best_matches(t, s)), rand));
         // The matcher alone: target t aligned to source s, each target sample to its best-scoring source sample.
-        const pair_alignment pa = align_extrinsic(records[std::size_t(t)], records[std::size_t(s)], eo);
-        const auto& scores = pa.alternatives[std::size_t(pa.initial)].scores;
-        std::vector<index_t> best(std::size_t(scores.rows()), 0);
-        for (index_t i = 0; i < scores.rows(); ++i) {
-          float top = -1;
-          for (Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>::InnerIterator it(scores, i); it; ++it)
-            if (it.value() > top) top = it.value(), best[std::size_t(i)] = it.col();
-        }
+        const auto best = best_scoring_samples(align_extrinsic(records[std::size_t(t)], records[std::size_t(s)], eo));
         sp[std::size_t(t)].push_back(label_score(T, transfer(S, T, best), rand));
       }
     });
