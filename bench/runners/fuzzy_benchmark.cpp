@@ -45,15 +45,15 @@
 
 #include "shapestruct/eval/error_curve.hpp"
 #include "shapestruct/eval/geodesic_error.hpp"
+#include "shapestruct/eval/rand_index.hpp"
 #include "shapestruct/fuzzy/collection_records.hpp"
 #include "shapestruct/fuzzy/extrinsic_alignment.hpp"
 #include "shapestruct/fuzzy/fuzzy_collection.hpp"
 #include "shapestruct/fuzzy/fuzzy_maps.hpp"
 #include "shapestruct/fuzzy/intrinsic_alignment.hpp"
 #include "shapestruct/generate/assembly_generator.hpp"
-#include "shapestruct/io/bim_benchmark_files.hpp"
-#include "shapestruct/eval/rand_index.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
+#include "shapestruct/io/bim_benchmark_files.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/io/segmentation_file.hpp"
 #include "shapestruct/knn/knn_index.hpp"
@@ -79,13 +79,6 @@ struct tuning {
   double intrinsic_sigma = intrinsic_alignment_options{}.sigma_fraction;
 };
 tuning knobs;
-
-/// The extrinsic score widths, for cache folder names.
-std::string extrinsic_tag() {
-  char b[96];
-  std::snprintf(b, sizeof b, "%.3f", knobs.extrinsic.sigma_fraction);
-  return b;
-}
 
 void apply(fuzzy_collection_options& fo) {
   if (knobs.time >= 0) fo.embedding.time = knobs.time;
@@ -447,7 +440,7 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
   fo.threads = threads;
   fo.cache_folder = out_dir / "cache" / (set + std::to_string(count) + "_seed" + std::to_string(seed) + "_k" +
                                          std::to_string(knobs.samples) + (knobs.aligner == "truth" ? "_truth" : "") +
-                                         "_sigma" + extrinsic_tag());
+                                         "_sigma" + fmt(knobs.extrinsic.sigma_fraction));
   apply(fo);
   const auto t1 = clock_type::now();
   const auto r = knobs.aligner == "truth"
@@ -531,8 +524,6 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
   return 0;
 }
 
-}  // namespace
-
 // ---------------------------------------------------------------------------------------------- label transfer
 /// One shape of a labelled collection: its faces' labels, areas, nearest sample per face, and a label per sample.
 struct labelled_shape {
@@ -543,11 +534,11 @@ struct labelled_shape {
   std::vector<index_t> sample_label;        ///< label of the face whose centroid is nearest each sample
 };
 
-labelled_shape label_shape(const fs::path& mesh_file, const shape_record& rec, std::vector<std::vector<index_t>> segs) {
+labelled_shape label_shape(const fs::path& mesh_file, const std::vector<fs::path>& seg_files, const shape_record& rec) {
   const auto m = read_mesh(mesh_file).mesh;
   labelled_shape out;
-  out.truth = segs.front();
-  out.humans = std::move(segs);
+  for (const auto& f : seg_files) out.humans.push_back(read_segmentation(f, m.F.rows()));
+  out.truth = out.humans.front();
   const Eigen::VectorXd A = face_areas<double>(m.V, m.F, validation_level::trust);
   out.area.assign(A.data(), A.data() + A.size());
   Eigen::Matrix<double, Eigen::Dynamic, 3> C(m.F.rows(), 3);
@@ -645,19 +636,13 @@ int run_labels(const std::string& set, const fs::path& data, const fs::path& out
     const index_t n = index_t(records.size());
     std::vector<labelled_shape> shapes(records.size());
     detail::parallel_for(n, detail::resolve_threads(threads), [&](index_t k) {
-      const auto at = std::find(spec.meshes.begin(), spec.meshes.end(), col.files[std::size_t(k)]) - spec.meshes.begin();
-      const index_t faces = read_mesh(spec.meshes[std::size_t(at)]).mesh.F.rows();
-      std::vector<std::vector<index_t>> segs;
-      for (const auto& f : spec.segs[std::size_t(at)]) {
-        auto l = read_segmentation(f, faces);
-        segs.push_back(std::move(l));
-      }
-      shapes[std::size_t(k)] = label_shape(spec.meshes[std::size_t(at)], records[std::size_t(k)], std::move(segs));
+      const auto at = std::size_t(std::find(spec.meshes.begin(), spec.meshes.end(), col.files[std::size_t(k)]) - spec.meshes.begin());
+      shapes[std::size_t(k)] = label_shape(spec.meshes[at], spec.segs[at], records[std::size_t(k)]);
     });
     const extrinsic_alignment_options eo = knobs.extrinsic;
     fuzzy_collection_options fo;
     fo.threads = threads;
-    fo.cache_folder = out_dir / "cache" / (spec.name + "_sigma" + extrinsic_tag());
+    fo.cache_folder = out_dir / "cache" / (spec.name + "_sigma" + fmt(knobs.extrinsic.sigma_fraction));
     apply(fo);
     const auto t1 = clock_type::now();
     const auto r = compute_fuzzy_correspondences(records, extrinsic_aligner(records, eo), fo);
@@ -701,6 +686,8 @@ int run_labels(const std::string& set, const fs::path& data, const fs::path& out
   return 0;
 }
 
+}  // namespace
+
 int main(int argc, char** argv) {
   std::string data_dir = std::getenv("SHAPESTRUCT_DATA") ? std::getenv("SHAPESTRUCT_DATA") : "";
   std::string set, out = "fuzzy_results", classes;
@@ -740,6 +727,11 @@ int main(int argc, char** argv) {
   }
   fs::create_directories(out);
   try {
+    if (knobs.aligner != "extrinsic" && !(knobs.aligner == "truth" && (set == "chairs" || set == "airplanes"))) {
+      std::cerr << "--aligner must be extrinsic, or truth with --set chairs|airplanes (the only sets with true "
+                   "landmarks on every shape)\n";
+      return 2;
+    }
     if (set == "shrec") {
       if (data_dir.empty()) {
         std::cerr << "--set shrec needs --data DIR or $SHAPESTRUCT_DATA\n";
