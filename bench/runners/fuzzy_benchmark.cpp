@@ -25,8 +25,10 @@
 //       index against every human segmentation of the target (the source's first human segmentation is carried).
 // Options: --aligner truth (generated sets) aligns every pair by the least-squares affine map of the true landmarks,
 // the chapter's Figure 4.7 experiment; --sigma / --intrinsic-sigma set the score widths (sigma_fraction of the
-// extrinsic and intrinsic aligners); --time, --dims, --iterations, --samples the pipeline's.
-// Writes <set>_pairs.csv (per pair and method), <set>_curves.dat (fraction within D, D = 0 .. 0.25) and
+// extrinsic and intrinsic aligners); --min-gain the consistent blended map's min_consistency_gain; --time, --dims,
+// --iterations, --samples the pipeline's.
+// Writes <set>_pairs.csv (per pair and method; for shrec also shrec_groups.csv, every candidate blended map of a
+// pair with its selection features and errors), <set>_curves.dat (fraction within D, D = 0 .. 0.25) and
 // appends a table to summary.md; prints per-stage times.
 #include <algorithm>
 #include <chrono>
@@ -77,6 +79,7 @@ struct tuning {
   extrinsic_alignment_options extrinsic;  ///< --sigma: its sigma_fraction
   /// --intrinsic-sigma: sigma_intrinsic(S) / sqrt(area(S)) of the intrinsic scores
   double intrinsic_sigma = intrinsic_alignment_options{}.sigma_fraction;
+  consistent_blended_options consistent;  ///< --min-gain: its min_consistency_gain
 };
 tuning knobs;
 
@@ -166,6 +169,9 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
     for (const auto& [c, v] : by_class) classes.push_back(c);
   std::ofstream csv(out_dir / "shrec_pairs.csv");
   csv << "class,source,target,method,mean,w025,mean_flip,flipped\n";
+  std::ofstream groups_csv(out_dir / "shrec_groups.csv");
+  groups_csv << "class,source,target,group,pairwise_selected,most_consistent,consistent_selected,consistency,area_score,"
+                "confidence_integral,convexity_mismatch,geodesic_distortion,selection_rank,w025,mean,flipped\n";
   std::map<std::string, method_errors> total;
   std::ofstream summary(out_dir / "summary.md", std::ios::app);
   summary << "\n## SHREC'07, one intrinsic collection per class (run_fuzzy_benchmark --set shrec)\n\n"
@@ -226,13 +232,16 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
         truth.push_back(fb[k]);
         truth_sym.push_back(fb[std::size_t(perm[k])]);
       }
-      auto score = [&](const std::string& method, const std::vector<index_t>& predicted_of_vertex) {
+      auto errors = [&](const std::vector<index_t>& predicted_of_vertex) {
         std::vector<index_t> pred;
         for (std::size_t k = 0; k < n; ++k) pred.push_back(predicted_of_vertex[std::size_t(fa[k])]);
-        const auto e_raw = benchmark_geodesic_errors<double>(B.V, B.F, geo, std::span<const index_t>(pred),
-                                                              std::span<const index_t>(truth), threads);
-        const auto e_sym = benchmark_geodesic_errors<double>(B.V, B.F, geo, std::span<const index_t>(pred),
-                                                              std::span<const index_t>(truth_sym), threads);
+        return std::pair{benchmark_geodesic_errors<double>(B.V, B.F, geo, std::span<const index_t>(pred),
+                                                           std::span<const index_t>(truth), threads),
+                         benchmark_geodesic_errors<double>(B.V, B.F, geo, std::span<const index_t>(pred),
+                                                           std::span<const index_t>(truth_sym), threads)};
+      };
+      auto score = [&](const std::string& method, const std::vector<index_t>& predicted_of_vertex) {
+        const auto [e_raw, e_sym] = errors(predicted_of_vertex);
         here[method].add(e_raw, e_sym);
         total[method].add(e_raw, e_sym);
         csv << cls << "," << a << "," << b << "," << method << "," << fmt(mean_of(e_raw), 4) << ","
@@ -240,10 +249,20 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
             << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "\n";
       };
       const blended_match_result<double> pairwise = aligner.match(ia, ib);
-      const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise);
+      const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent);
       score("pairwise", pairwise.map.nearest);
       score("consistent_blended", cb.map.nearest);
       score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
+      for (std::size_t k = 0; k < cb.groups.size(); ++k) {  // every candidate blended map, to study the selection
+        const auto& g = pairwise.blended[std::size_t(cb.groups[k])];
+        const auto [e_raw, e_sym] = errors(g.map.nearest);
+        groups_csv << cls << "," << a << "," << b << "," << cb.groups[k] << "," << (cb.groups[k] == pairwise.selected)
+                   << "," << (cb.groups[k] == cb.most_consistent_group) << "," << (cb.groups[k] == cb.group) << ","
+                   << fmt(cb.consistency[k], 4) << "," << fmt(g.score, 4)
+                   << "," << fmt(g.confidence_integral, 4) << "," << fmt(g.convexity_mismatch, 4) << ","
+                   << fmt(g.geodesic_distortion, 4) << "," << g.selection_rank << "," << fmt(within(e_raw, 0.25), 3)
+                   << "," << fmt(mean_of(e_raw), 4) << "," << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "\n";
+      }
       const fs::path st = data / "Results/Results_Corr_SHREC" / ("BenchResult_BlendedMap_" + a + "_to_" + b + ".txt");
       if (fs::exists(st)) {
         const auto blocks = read_bim_result(st.string());
@@ -347,7 +366,7 @@ int run_scape(const fs::path& data, const fs::path& out_dir, int threads) {
           << fmt(std::min(mean_of(e_raw), mean_of(e_sym)), 4) << "," << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "\n";
     };
     const blended_match_result<double> pairwise = aligner.match(ia, ib);
-    const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise);
+    const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent);
     score("pairwise", pairwise.map.nearest);
     score("consistent_blended", cb.map.nearest);
     score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
@@ -717,11 +736,12 @@ int main(int argc, char** argv) {
     else if (a == "--aligner") knobs.aligner = next();
     else if (a == "--sigma") knobs.extrinsic.sigma_fraction = std::stod(next());
     else if (a == "--intrinsic-sigma") knobs.intrinsic_sigma = std::stod(next());
+    else if (a == "--min-gain") knobs.consistent.min_consistency_gain = std::stod(next());
     else {
       std::cerr << "usage: run_fuzzy_benchmark --set shrec|scape|chairs|airplanes|coseg|psb --out DIR [--data DIR] [--classes 1,4] "
                    "[--count N] [--seed S] [--threads T]\n"
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--no-baseline]\n"
-                   "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F]\n";
+                   "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F]\n";
       return 2;
     }
   }

@@ -57,6 +57,7 @@ int run_fuzzy(const fuzzy_command_line& c) {
 struct fuzzy_map_command_line {
   std::string folder, a, b, out;
   bool consistent = false;
+  double min_gain = consistent_blended_options{}.min_consistency_gain;
   long long threads = 0;
 };
 
@@ -82,10 +83,10 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
     if (collection.mode != "intrinsic")
       throw cli::usage_error("--consistent-blended needs an intrinsic collection (this one is extrinsic)");
     intrinsic_aligner aligner(records, [&files](index_t k) { return read_mesh(files[std::size_t(k)]).mesh; });
-    const auto cb = make_consistent_blended_map(aligner, f, a, b);
+    const auto cb = make_consistent_blended_map(aligner, f, a, b, {.min_consistency_gain = c.min_gain});
     map = cb.map.nearest;
-    std::fprintf(stderr, "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld)\n", long(cb.group),
-                 cb.consistency.size(), long(cb.pairwise_group));
+    std::fprintf(stderr, "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld, the most consistent is %ld)\n",
+                 long(cb.group), cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group));
   } else {
     const bool on_vertices = !records[std::size_t(b)].sample_vertex.empty() && records[std::size_t(b)].sample_vertex[0] != no_index;
     const Eigen::Matrix<double, Eigen::Dynamic, 3> Vb =
@@ -304,11 +305,16 @@ cli::command_fn setup_fuzzy_map(CLI::App& app) {
   app.add_option("-o,--output", c->out, "the dense vertex map")->type_name("A_B.map")->required();
   app.add_flag("--consistent-blended", c->consistent,
                "(intrinsic collections) the blended map of the pair most consistent\nwith the fuzzy correspondences");
+  app.add_option("--min-gain", c->min_gain,
+                 "with --consistent-blended: how much more consistent (a fraction) the\ncollection's choice must be to overrule the matcher's own (default 0.1;\n0 = always the most consistent)")
+      ->type_name("F")
+      ->check(cli::at_least(0.0));
   app.add_option("--threads", c->threads, "worker threads, 0 = all cores (default)")->type_name("N")->check(cli::at_least(0LL));
   app.footer(
       "Dense vertex map from shape A to shape B of a collection computed by `shapestruct fuzzy`: by default the\n"
       "best fuzzy correspondence (each vertex goes where its nearest sample's closest sample in the embedding\n"
-      "lies); --consistent-blended the blended map of the pair most consistent with the fuzzy correspondences.\n"
+      "lies); --consistent-blended the blended map of the pair most consistent with the fuzzy correspondences,\n"
+      "unless it is less than --min-gain more consistent than the blended matcher's own choice.\n"
       "One 0-based target vertex id per line.");
   return [c] { return run_fuzzy_map(*c); };
 }

@@ -68,6 +68,7 @@ run_cli_error("not a number" "--seed.*abc" generate chairs 2 -o ${WORK}/never --
 run_cli_error("not a number" "--max-examples.*many" inspect ${WORK} --max-examples many)
 run_cli_error("not a number" "--diffusion-time.*x1" fuzzy ${WORK} -o ${WORK}/never --diffusion-time x1)
 run_cli_error("not a number" "N.*three" generate chairs three -o ${WORK}/never)
+run_cli_error("out of range" "--min-gain.*-0.5" fuzzy-map ${WORK} a b -o ${WORK}/never.map --consistent-blended --min-gain -0.5)
 run_cli_error("out of range" "--threads: must be >= 0, got -1" generate chairs 2 -o ${WORK}/never --threads -1)
 list(FIND commands explore explore_index)
 if(explore_index GREATER -1)

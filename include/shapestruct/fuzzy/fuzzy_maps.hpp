@@ -2,6 +2,7 @@
 // fuzzy_maps: dense vertex maps between two shapes of a collection from its fuzzy correspondence (ch. 4.4).
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -55,32 +56,54 @@ namespace shapestruct {
   return out;
 }
 
+/// Options of make_consistent_blended_map.
+struct consistent_blended_options {
+  /// The collection overrules the blended matcher's own choice only when its most consistent map beats the
+  /// matcher's choice by this fraction of the latter's consistency (eq. 4.10). Near ties are a symmetry the whole
+  /// collection shares (left and right of an airplane): f cannot tell the two maps apart, the matcher's extrinsic
+  /// cue (convexity) can. 0 is the chapter's rule (the most consistent map, always).
+  double min_consistency_gain = 0.1;
+};
+
 /// The consistent blended map of ch. 4.4.5: of the blended maps the blended matcher builds for (a, b), the one
-/// whose alignment scores agree best with f (the consistency score of eq. 4.10).
+/// whose alignment scores agree best with f (the consistency score of eq. 4.10), unless it is only marginally
+/// more consistent than the matcher's own choice (consistent_blended_options).
 struct consistent_blended_map {
   surface_map<double> map;        ///< source vertices of a -> surface points of b
   index_t group = no_index;       ///< index of the chosen blended map in the match's `blended`
   index_t pairwise_group = no_index;  ///< the group the blended matcher alone selects
-  std::vector<double> consistency;    ///< score_f of every group (eq. 4.10)
+  index_t most_consistent_group = no_index;  ///< the group with the highest consistency
+  std::vector<double> consistency;    ///< score_f (eq. 4.10) of every group with a map, in `groups`' order
+  std::vector<index_t> groups;        ///< the group (index in the match's `blended`) of each consistency entry
 };
 
 /// The consistent blended map of shapes a -> b chosen among the blended maps of `r`, a match of a -> b by
 /// `aligner` (intrinsic_aligner::match), so a caller that also wants the pairwise map matches once.
+/// \throws invalid_input (bad_parameter) for a negative or non-finite min_consistency_gain.
 [[nodiscard]] inline consistent_blended_map make_consistent_blended_map(const intrinsic_aligner& aligner,
                                                                         const fuzzy_correspondence& f, index_t a,
-                                                                        index_t b, const blended_match_result<double>& r) {
+                                                                        index_t b, const blended_match_result<double>& r,
+                                                                        const consistent_blended_options& options = {}) {
+  if (!(options.min_consistency_gain >= 0) || !std::isfinite(options.min_consistency_gain))
+    throw invalid_input(input_error::bad_parameter, no_index,
+                        "make_consistent_blended_map: min_consistency_gain must be finite and at least 0, got " +
+                            std::to_string(options.min_consistency_gain));
   const pair_alignment alts = aligner.alignment_from(a, b, r);
   consistent_blended_map out;
   out.pairwise_group = r.selected;
-  double best = -1;
+  double best = -1, pairwise = -1;
   const Eigen::MatrixXd F = f.block(a, b);
   for (const auto& alt : alts.alternatives) {
     const double s = detail::consistency_score(alt, F);
-    out.consistency.push_back(s);
     const auto g = static_cast<index_t>(alt.parameters.at(0));
-    if (s > best) best = s, out.group = g;
+    out.consistency.push_back(s);
+    out.groups.push_back(g);
+    if (s > best) best = s, out.most_consistent_group = g;
+    if (g == r.selected) pairwise = s;
   }
-  if (out.group == no_index) out.group = r.selected;
+  out.group = out.most_consistent_group;
+  if (out.group == no_index || (pairwise >= 0 && best <= (1 + options.min_consistency_gain) * pairwise))
+    out.group = r.selected;
   out.map = r.blended[std::size_t(out.group)].map;
   return out;
 }
@@ -88,8 +111,9 @@ struct consistent_blended_map {
 /// Computes the consistent blended map of shapes a -> b. \throws as intrinsic_aligner::match.
 [[nodiscard]] inline consistent_blended_map make_consistent_blended_map(const intrinsic_aligner& aligner,
                                                                         const fuzzy_correspondence& f, index_t a,
-                                                                        index_t b) {
-  return make_consistent_blended_map(aligner, f, a, b, aligner.match(a, b));
+                                                                        index_t b,
+                                                                        const consistent_blended_options& options = {}) {
+  return make_consistent_blended_map(aligner, f, a, b, aligner.match(a, b), options);
 }
 
 }  // namespace shapestruct

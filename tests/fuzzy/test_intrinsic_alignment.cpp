@@ -1,0 +1,134 @@
+// SPDX-License-Identifier: MIT
+// Tests of intrinsic_aligner (ch. 4.3.4), every blended map kept as a scored alternative, and of the consistent
+// blended map (ch. 4.4.5) with its margin over the blended matcher's own choice.
+#include <cmath>
+#include <vector>
+
+#include <doctest/doctest.h>
+
+#include "blended/blended_fixtures.hpp"
+#include "shapestruct/collection/make_shape_record.hpp"
+#include "shapestruct/collection/spherical_harmonic_descriptor.hpp"
+#include "shapestruct/fuzzy/fuzzy_collection.hpp"
+#include "shapestruct/fuzzy/fuzzy_maps.hpp"
+#include "shapestruct/fuzzy/intrinsic_alignment.hpp"
+
+using namespace shapestruct;
+
+namespace {
+struct creatures {
+  std::vector<triangle_mesh<double>> meshes;
+  std::vector<shape_record> records;
+  std::vector<index_t> perm;  // the copy's vertex of each original vertex
+};
+
+// A creature with a front-back intrinsic symmetry and moved, vertex-permuted copies of it (perm: the first copy's).
+creatures make_creatures(int count = 2) {
+  creatures c;
+  c.meshes.push_back(test::front_back_creature(4));
+  c.meshes.push_back(test::moved_and_permuted(c.meshes[0], c.perm));
+  std::vector<index_t> unused;
+  for (int k = 2; k < count; ++k) c.meshes.push_back(test::moved_and_permuted(c.meshes[0], unused, std::uint64_t(7 + k)));
+  const spherical_harmonic_descriptor describe;
+  for (std::size_t k = 0; k < c.meshes.size(); ++k)
+    c.records.push_back(make_shape_record(c.meshes[k], "creature" + std::to_string(k), describe, {.samples = 64, .surface_points = 256}));
+  return c;
+}
+
+intrinsic_alignment_options flip_telling_options() {
+  intrinsic_alignment_options o;
+  o.matcher.shape.num_samples = 128;
+  o.matcher.convexity_weight = 5;  // as the matcher's own flip test: convexity decides between the two groups
+  o.matcher.selection = blended_selection::area_score;
+  return o;
+}
+}  // namespace
+
+TEST_CASE("intrinsic_aligner keeps every blended map as a scored alternative, the best area score B first") {
+  const auto c = make_creatures();
+  REQUIRE(c.records[0].closed_genus0);
+  REQUIRE(c.records[1].closed_genus0);
+  const auto options = flip_telling_options();
+  const intrinsic_aligner aligner(c.records, [&](index_t k) { return c.meshes[std::size_t(k)]; }, options);
+  const auto match = aligner.match(0, 1);
+  REQUIRE(match.blended.size() >= 2);  // the true map and the flip form separate groups
+  const pair_alignment alignment = aligner.alignment_from(0, 1, match);
+  REQUIRE(alignment.alternatives.size() == match.blended.size());
+  index_t best_area = 0;
+  for (std::size_t k = 0; k < alignment.alternatives.size(); ++k) {
+    const auto& alt = alignment.alternatives[k];
+    CHECK(static_cast<index_t>(alt.parameters.at(0)) == static_cast<index_t>(k));  // one alternative per group
+    CHECK(alt.scores.rows() == c.records[0].sample_count());
+    CHECK(alt.scores.cols() == c.records[1].sample_count());
+    for (index_t i = 0; i < alt.scores.outerSize(); ++i)
+      CHECK(alt.scores.outerIndexPtr()[i + 1] - alt.scores.outerIndexPtr()[i] <= options.max_entries_per_row);
+    CHECK(alt.global_score > 0);
+    CHECK(alt.global_score <= 1);
+    if (alt.global_score > alignment.alternatives[std::size_t(best_area)].global_score) best_area = static_cast<index_t>(k);
+  }
+  MESSAGE("matcher selects group " << match.selected << ", best area score B is group " << best_area);
+  CHECK(alignment.initial == best_area);  // the chapter's start (4.3.4)
+  auto from_selection = options;
+  from_selection.start_from_matcher_selection = true;
+  const intrinsic_aligner selecting(c.records, [&](index_t k) { return c.meshes[std::size_t(k)]; }, from_selection);
+  const pair_alignment started = selecting.alignment_from(0, 1, match);
+  CHECK(static_cast<index_t>(started.alternatives[std::size_t(started.initial)].parameters.at(0)) == match.selected);
+
+  // The matcher's selected map is the true one, the best-B map is not (the flip): count the source samples
+  // whose best-scoring target sample is the one nearest their true image.
+  const shape_record& ra = c.records[0];
+  const shape_record& rb = c.records[1];
+  auto samples_right = [&](index_t group) {
+    const auto& scores = alignment.alternatives[std::size_t(group)].scores;
+    index_t right = 0;
+    for (index_t i = 0; i < ra.sample_count(); ++i) {
+      index_t best = no_index;
+      float top = -1;
+      for (Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>::InnerIterator it(scores, i); it; ++it)
+        if (it.value() > top) top = it.value(), best = it.col();
+      const index_t true_image = c.perm[std::size_t(ra.sample_vertex[std::size_t(i)])];
+      const index_t true_sample = rb.vertex_sample[std::size_t(true_image)];
+      if (best != no_index && rb.sample_geodesics(best, true_sample) < 0.1 * std::sqrt(rb.area)) ++right;
+    }
+    return right;
+  };
+  CHECK(samples_right(match.selected) >= ra.sample_count() * 9 / 10);
+  if (best_area != match.selected) CHECK(samples_right(best_area) < ra.sample_count() / 2);
+}
+
+TEST_CASE("consistent blended map: the collection overrules the matcher only by the required margin") {
+  const auto c = make_creatures(3);
+  // Started from B, every edge of this collection of copies takes the flip (B cannot tell it), and the collection
+  // is consistently flipped; started from the matcher's choice it is consistently right.
+  auto options = flip_telling_options();
+  options.start_from_matcher_selection = true;
+  const intrinsic_aligner aligner(c.records, [&](index_t k) { return c.meshes[std::size_t(k)]; }, options);
+  fuzzy_collection_options fo;
+  fo.embedding.dimensions = 16;
+  fo.threads = 2;
+  const auto r = compute_fuzzy_correspondences(c.records, aligner, fo);
+  const auto match = aligner.match(0, 1);
+  // gain 0 is the chapter's rule: the most consistent map, always.
+  const auto chapter = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.min_consistency_gain = 0});
+  REQUIRE(chapter.groups.size() == chapter.consistency.size());
+  REQUIRE(chapter.groups.size() >= 2);
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < chapter.consistency.size(); ++k)
+    if (chapter.consistency[k] > chapter.consistency[best]) best = k;
+  CHECK(chapter.most_consistent_group == chapter.groups[best]);
+  CHECK(chapter.group == chapter.most_consistent_group);
+  CHECK(chapter.pairwise_group == match.selected);
+  // With an unreachable margin the matcher's own choice stays; with the default, either choice is explained.
+  const auto never = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.min_consistency_gain = 1e9});
+  CHECK(never.group == match.selected);
+  const auto by_default = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match);
+  double pairwise = 0;
+  for (std::size_t k = 0; k < by_default.groups.size(); ++k)
+    if (by_default.groups[k] == match.selected) pairwise = by_default.consistency[k];
+  const double gain = consistent_blended_options{}.min_consistency_gain;
+  CHECK(by_default.group == (by_default.consistency[best] > (1 + gain) * pairwise ? by_default.most_consistent_group : match.selected));
+  // On this exact copy the matcher and the collection agree on the true map.
+  CHECK(by_default.group == match.selected);
+  for (const double bad : {-0.1, std::nan("")})
+    CHECK_THROWS_AS((void)make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.min_consistency_gain = bad}), invalid_input);
+}
