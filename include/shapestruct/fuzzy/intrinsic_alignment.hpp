@@ -36,7 +36,7 @@ struct intrinsic_alignment_options {
   /// Laplace-Beltrami bases for every pair.
   blended_matcher_options matcher = unrefined();
   /// sigma_intrinsic(S) = sigma_fraction sqrt(area(S)). The chapter (4.3.4) uses 0.3; 0.15 measured better on
-  /// all 11 SHREC'07 classes together (docs/fuzzy.md: consistent blended 0.870 against 0.857 within 0.25).
+  /// all 11 SHREC'07 classes together (docs/fuzzy.md: consistent blended 0.870 against 0.857 within 0.25, margin 0).
   double sigma_fraction = 0.15;
   index_t max_entries_per_row = 16;   ///< a(p_i, .) keeps this many largest entries per row
   float keep_fraction = 1e-3f;        ///< and drops entries below this fraction of the row's largest
