@@ -98,8 +98,8 @@ TEST_CASE("intrinsic_aligner keeps every blended map as a scored alternative, th
 
 TEST_CASE("consistent blended map: the collection overrules the matcher only by the required margin") {
   const auto c = make_creatures(3);
-  // Started from B, every edge of this collection of copies takes the flip (B cannot tell it), and the collection
-  // is consistently flipped; started from the matcher's choice it is consistently right.
+  // Started from B (which cannot tell the flip), this collection of copies was seen to prefer the flip for the pair;
+  // started from the matcher's choice it agrees with the matcher.
   auto options = flip_telling_options();
   options.start_from_matcher_selection = true;
   const intrinsic_aligner aligner(c.records, [&](index_t k) { return c.meshes[std::size_t(k)]; }, options);
