@@ -60,8 +60,8 @@ namespace shapestruct {
 struct consistent_blended_options {
   /// The collection overrules the blended matcher's own choice only when its most consistent map beats the
   /// matcher's choice by this fraction of the latter's consistency (eq. 4.10). Near ties are a symmetry the whole
-  /// collection shares (left and right of an airplane): f cannot tell the two maps apart, the matcher's extrinsic
-  /// cue (convexity) can. 0 is the chapter's rule (the most consistent map, always).
+  /// collection shares (left and right of an airplane): f cannot tell the two maps apart, the matcher's own
+  /// selection (area, confidence and convexity ranks) often can. 0 is the chapter's rule (the most consistent map, always).
   double min_consistency_gain = 0.1;
 };
 

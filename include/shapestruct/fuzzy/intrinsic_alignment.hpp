@@ -42,8 +42,8 @@ struct intrinsic_alignment_options {
   float keep_fraction = 1e-3f;        ///< and drops entries below this fraction of the row's largest
   index_t cache_shapes = 24;          ///< prepared shapes kept in memory (each a few MB per 10k vertices)
   /// An edge starts (iteration 0) from the blended map the matcher selects instead of the one with the best B
-  /// (the chapter's). B is intrinsic and cannot tell a map from its symmetric flip; the matcher's convexity cue
-  /// can. Off by default: on SHREC'07 it is 0.011 worse within 0.25 (glasses and pliers; docs/fuzzy.md).
+  /// (the chapter's). B is intrinsic and cannot tell a map from its symmetric flip; the matcher's selection
+  /// (area, confidence and convexity ranks) often can. Off by default: on SHREC'07 it is 0.011 worse within 0.25 (glasses and pliers; docs/fuzzy.md).
   bool start_from_matcher_selection = false;
 
   static blended_matcher_options unrefined() {
