@@ -1142,7 +1142,7 @@ cli::command_fn setup_analyze(CLI::App& app) {
   return [c] { return run_analyze(*c); };
 }
 
-const cli::register_command reg{
+const cli::register_command register_analyze{
     "analyze",
     {"the structure of a folder of shapes in one command: check, templates, fuzzy correspondences, accuracy, report",
      setup_analyze}};

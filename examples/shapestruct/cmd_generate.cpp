@@ -243,7 +243,7 @@ cli::command_fn setup_generate(CLI::App& app) {
   return [o] { return run_generate(*o); };
 }
 
-const cli::register_command reg{
+const cli::register_command register_generate{
     "generate",
     {"write a synthetic collection (creatures, chairs, tables, airplanes) with exact ground truth", setup_generate}};
 

@@ -160,7 +160,7 @@ cli::command_fn setup_inspect(CLI::App& app) {
   return [o] { return run_inspect(*o); };
 }
 
-const cli::register_command reg{
+const cli::register_command register_inspect{
     "inspect",
     {"print a mesh check (size, components, boundary, manifoldness, genus, defects) for mesh files", setup_inspect}};
 

@@ -302,6 +302,6 @@ command_fn setup_match(CLI::App& app) {
   return [m] { return run_match(*m); };
 }
 
-const register_command reg{"match", {"blended intrinsic maps between two meshes (writes a dense .map)", setup_match}};
+const register_command register_match{"match", {"blended intrinsic maps between two meshes (writes a dense .map)", setup_match}};
 
 }  // namespace

@@ -147,7 +147,7 @@ cli::command_fn setup_templates(CLI::App& app) {
   return [c] { return run_templates(*c); };
 }
 
-const cli::register_command reg{
+const cli::register_command register_templates{
     "templates",
     {"learn part-based templates; segment, correspond and co-align a folder of shapes (chapter 5)", setup_templates}};
 

@@ -16,8 +16,9 @@
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
-#include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/boykov_kolmogorov_max_flow.hpp>
+#include <boost/graph/compressed_sparse_row_graph.hpp>
+#include <boost/property_map/property_map.hpp>
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
 #endif
@@ -33,6 +34,79 @@ struct potts_edge {
   index_t a = 0, b = 0;
   double weight = 0;
 };
+
+namespace detail {
+
+/// The s-t network of one expansion move, solved by Boost's Boykov-Kolmogorov max-flow on a compressed sparse row
+/// graph. Arcs are stored flat and every buffer is reused across moves: an adjacency_list would allocate once per
+/// arc (its edge properties live on the heap), which made allocation most of the cost of labeling a shape.
+class expansion_network {
+ public:
+  using graph = boost::compressed_sparse_row_graph<boost::directedS>;
+  using edge = boost::graph_traits<graph>::edge_descriptor;
+
+  void reset(std::size_t vertices) {
+    vertices_ = vertices;
+    tail_.clear();
+    head_.clear();
+    capacity_in_order_.clear();
+  }
+  /// Arc u -> v of capacity c and its reverse v -> u of capacity 0. Each vertex's out-arcs keep the order they
+  /// were added in, so the flow (and which of several minimum cuts is returned) does not depend on the storage.
+  void add_arc(std::size_t u, std::size_t v, double c) {
+    tail_.push_back(u), head_.push_back(v), capacity_in_order_.push_back(c);
+    tail_.push_back(v), head_.push_back(u), capacity_in_order_.push_back(0.0);
+  }
+  /// Max-flow from `source` to `sink`; afterwards on_source_side(v) says which side of the minimum cut v is on.
+  void solve(std::size_t source, std::size_t sink) {
+    const std::size_t m = tail_.size();
+    // Stable counting sort of the arcs by tail: the CSR graph wants them sorted by source.
+    offset_.assign(vertices_ + 1, 0);
+    for (const auto u : tail_) ++offset_[u + 1];
+    for (std::size_t v = 0; v < vertices_; ++v) offset_[v + 1] += offset_[v];
+    position_.resize(m);
+    sorted_.resize(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      position_[k] = offset_[tail_[k]]++;
+      sorted_[position_[k]] = {tail_[k], head_[k]};
+    }
+    const graph g(boost::edges_are_sorted, sorted_.begin(), sorted_.end(), vertices_, m);
+    capacity_.resize(m);
+    residual_.resize(m);
+    reverse_.resize(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t twin = k ^ 1;  // arcs were added in pairs
+      capacity_[position_[k]] = capacity_in_order_[k];
+      reverse_[position_[k]] = edge(head_[k], position_[twin]);
+    }
+    predecessor_.assign(vertices_, edge());
+    color_.assign(vertices_, boost::white_color);
+    distance_.assign(vertices_, 0);
+    const auto edge_id = boost::get(boost::edge_index, g);
+    const auto vertex_id = boost::get(boost::vertex_index, g);
+    boost::boykov_kolmogorov_max_flow(
+        g, boost::make_iterator_property_map(capacity_.begin(), edge_id),
+        boost::make_iterator_property_map(residual_.begin(), edge_id),
+        boost::make_iterator_property_map(reverse_.begin(), edge_id),
+        boost::make_iterator_property_map(predecessor_.begin(), vertex_id),
+        boost::make_iterator_property_map(color_.begin(), vertex_id),
+        boost::make_iterator_property_map(distance_.begin(), vertex_id), vertex_id, source, sink);
+    source_color_ = color_[source];
+  }
+  [[nodiscard]] bool on_source_side(std::size_t v) const { return color_[v] == source_color_; }
+
+ private:
+  std::size_t vertices_ = 0;
+  std::vector<std::size_t> tail_, head_, offset_, position_;
+  std::vector<double> capacity_in_order_, capacity_, residual_;
+  std::vector<std::pair<std::size_t, std::size_t>> sorted_;
+  std::vector<edge> reverse_, predecessor_;
+  std::vector<boost::default_color_type> color_;
+  std::vector<long> distance_;
+  boost::default_color_type source_color_ = boost::black_color;
+};
+
+}  // namespace detail
 
 /// Options of alpha_expansion.
 struct alpha_expansion_options {
@@ -106,38 +180,19 @@ inline alpha_expansion_result alpha_expansion(const Eigen::Ref<const Eigen::Matr
                           "alpha_expansion: initial label of node " + std::to_string(i) + " is outside [0, " +
                               std::to_string(L) + ")");
 
-  using traits = boost::adjacency_list_traits<boost::vecS, boost::vecS, boost::directedS>;
-  using graph = boost::adjacency_list<
-      boost::vecS, boost::vecS, boost::directedS,
-      boost::property<boost::vertex_index_t, long,
-                      boost::property<boost::vertex_color_t, boost::default_color_type,
-                                      boost::property<boost::vertex_distance_t, long,
-                                                      boost::property<boost::vertex_predecessor_t,
-                                                                      traits::edge_descriptor>>>>,
-      boost::property<boost::edge_capacity_t, double,
-                      boost::property<boost::edge_residual_capacity_t, double,
-                                      boost::property<boost::edge_reverse_t, traits::edge_descriptor>>>>;
-
+  detail::expansion_network net;
   alpha_expansion_result res;
   double energy = potts_energy(unary, edges, lab);
   std::vector<double> d(static_cast<std::size_t>(n));  // unary difference cost(x=1) - cost(x=0) per node
+  std::vector<index_t> cand;
   res.info = status::not_converged;
   for (int sweep = 0; sweep < opt.max_sweeps; ++sweep) {
     bool improved = false;
     for (index_t alpha = 0; alpha < L; ++alpha) {
       // Binary move: x_i = 0 keeps l_i, x_i = 1 takes alpha. Nodes already labeled alpha stay (x_i = 0 = 1).
-      graph g(static_cast<std::size_t>(n + 2));
       const auto src = static_cast<std::size_t>(n), snk = static_cast<std::size_t>(n + 1);
-      auto cap = boost::get(boost::edge_capacity, g);
-      auto rev = boost::get(boost::edge_reverse, g);
-      auto add_arc = [&](std::size_t u, std::size_t v, double c) {
-        const auto e1 = boost::add_edge(u, v, g).first;
-        const auto e2 = boost::add_edge(v, u, g).first;
-        cap[e1] = c;
-        cap[e2] = 0;
-        rev[e1] = e2;
-        rev[e2] = e1;
-      };
+      net.reset(static_cast<std::size_t>(n + 2));
+      auto add_arc = [&](std::size_t u, std::size_t v, double c) { net.add_arc(u, v, c); };
       for (index_t i = 0; i < n; ++i) {
         const auto l = lab[static_cast<std::size_t>(i)];
         d[static_cast<std::size_t>(i)] = (l == alpha) ? 0.0 : unary(i, alpha) - unary(i, l);
@@ -171,12 +226,10 @@ inline alpha_expansion_result alpha_expansion(const Eigen::Ref<const Eigen::Matr
         if (di > 0) add_arc(src, static_cast<std::size_t>(i), di);   // paying di when x_i = 1 (sink side)
         else if (di < 0) add_arc(static_cast<std::size_t>(i), snk, -di);  // paying -di when x_i = 0
       }
-      boost::boykov_kolmogorov_max_flow(g, src, snk);
-      auto color = boost::get(boost::vertex_color, g);
-      const auto src_color = boost::get(color, src);
-      std::vector<index_t> cand = lab;
+      net.solve(src, snk);
+      cand = lab;
       for (index_t i = 0; i < n; ++i)
-        if (cand[static_cast<std::size_t>(i)] != alpha && boost::get(color, static_cast<std::size_t>(i)) != src_color)
+        if (cand[static_cast<std::size_t>(i)] != alpha && !net.on_source_side(static_cast<std::size_t>(i)))
           cand[static_cast<std::size_t>(i)] = alpha;
       const double e_new = potts_energy(unary, edges, cand);
       // Accept strict improvements only (relative tolerance absorbs floating-point noise in the flow).
