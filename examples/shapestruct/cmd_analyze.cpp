@@ -831,6 +831,7 @@ std::string describe(const std::string& rel) {
   if (rel == "fuzzy/graph.txt") return "the final alignment graph";
   if (rel == "fuzzy/iterations.tsv") return "per graph optimisation round: edges, switches, pruned, added, consistency";
   if (rel == "fuzzy/fuzzy.bin") return "the diffusion embedding and widths tau defining the fuzzy correspondences";
+  if (rel == "fuzzy/cache.json") return "what the resume caches were made with (a rerun with other settings is refused)";
   if (rel == "fuzzy/records") return "resume cache: one shape record per shape (NAME.rec)";
   if (rel == "fuzzy/pairs") return "resume cache: one pairwise alignment per aligned pair (A__B.align)";
   if (rel == "report/index.html") return "the report: open it in a browser from disk";

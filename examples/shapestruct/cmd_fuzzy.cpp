@@ -97,6 +97,39 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
   return 0;
 }
 
+/// OUT/cache.json records what the resume caches were made with: records/ (samples and their metric) and pairs/
+/// (alignment mode, up axis). A rerun into the same folder with other settings would mix old records or
+/// alignments into the new run without a word, so it is refused, naming the option.
+class cache_settings {
+ public:
+  explicit cache_settings(fs::path file) : file_(std::move(file)) {
+    if (fs::exists(file_)) stored_ = read_json_file(file_.string());
+  }
+  /// Throws cli::usage_error when `part` was stored with other values; otherwise records `wanted` for it.
+  void require(const std::string& part, const std::string& folder, const nlohmann::ordered_json& wanted) {
+    if (stored_.is_object() && stored_.contains(part) && stored_[part] != wanted)
+      for (const auto& [key, value] : wanted.items()) {
+        const auto& old = stored_[part].contains(key) ? stored_[part][key] : nlohmann::ordered_json();
+        if (old != value)
+          throw cli::usage_error((file_.parent_path() / folder).string() + " was made with " + key + " " + old.dump() +
+                                 "; this run asks for " + value.dump() + " (option " + flag_of(key) +
+                                 "). Use another output folder, or delete " + folder + "/ there to make it again");
+      }
+    if (!stored_.is_object()) stored_ = nlohmann::ordered_json::object();
+    stored_[part] = wanted;
+  }
+  void write() const { write_json_file(file_.string(), stored_); }
+
+ private:
+  static std::string flag_of(const std::string& key) {
+    if (key == "samples") return "--samples";
+    if (key == "up") return "--up";
+    return "--mode";  // the sampling metric and the alignment mode both follow it
+  }
+  fs::path file_;
+  nlohmann::ordered_json stored_;
+};
+
 }  // namespace
 
 namespace shapestruct::cli {
@@ -117,6 +150,9 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
   ro.on_progress = [&](std::size_t d, std::size_t t) { bar.update("records", d, t); };
   ro.share = o.share;
   const bool writer = o.share.leader();  // with several ranks, rank 0 alone writes the results and speaks
+  cache_settings cache(out_dir / "cache.json");
+  cache.require("records", "records",
+                {{"samples", o.samples}, {"metric", o.mode == "extrinsic" ? "euclidean" : "geodesic where possible"}});
   auto col = make_collection_records(files, ro);
   bar.finish();
   const double t_records = since(t_start);
@@ -143,6 +179,10 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
                  intrinsic ? "intrinsic" : "extrinsic", o.samples, t_records);
 
   // 2. The pipeline, with the pairwise alignments cached in OUT/pairs.
+  nlohmann::ordered_json alignment_settings{{"mode", intrinsic ? "intrinsic" : "extrinsic"}};
+  if (!intrinsic) alignment_settings["up"] = o.up;
+  cache.require("pairs", "pairs", alignment_settings);
+  if (writer) cache.write();
   fuzzy_collection_options fo;
   fo.threads = static_cast<int>(o.threads);
   fo.graph.edges_per_shape = static_cast<index_t>(o.edges_per_shape);
@@ -303,12 +343,13 @@ cli::command_fn setup_fuzzy_map(CLI::App& app) {
   app.add_option("A", c->a, "the source shape (its name in OUT/collection.json, i.e. its file stem)")->required();
   app.add_option("B", c->b, "the target shape")->required();
   app.add_option("-o,--output", c->out, "the dense vertex map")->type_name("A_B.map")->required();
-  app.add_flag("--consistent-blended", c->consistent,
-               "(intrinsic collections) the blended map of the pair most consistent\nwith the fuzzy correspondences");
+  auto* consistent = app.add_flag("--consistent-blended", c->consistent,
+                                  "(intrinsic collections) the blended map of the pair most consistent\nwith the fuzzy correspondences");
   app.add_option("--min-gain", c->min_gain,
                  "with --consistent-blended: how much more consistent (a fraction) the\ncollection's choice must be to overrule the matcher's own (default 0.1;\n0 = always the most consistent)")
       ->type_name("F")
-      ->check(cli::at_least(0.0));
+      ->check(cli::at_least(0.0))
+      ->needs(consistent);  // alone it would be silently ignored
   app.add_option("--threads", c->threads, "worker threads, 0 = all cores (default)")->type_name("N")->check(cli::at_least(0LL));
   app.footer(
       "Dense vertex map from shape A to shape B of a collection computed by `shapestruct fuzzy`: by default the\n"

@@ -68,6 +68,7 @@ run_cli_error("not a number" "--seed.*abc" generate chairs 2 -o ${WORK}/never --
 run_cli_error("not a number" "--max-examples.*many" inspect ${WORK} --max-examples many)
 run_cli_error("not a number" "--diffusion-time.*x1" fuzzy ${WORK} -o ${WORK}/never --diffusion-time x1)
 run_cli_error("not a number" "N.*three" generate chairs three -o ${WORK}/never)
+run_cli_error("option without the one it refines" "--min-gain requires --consistent-blended" fuzzy-map ${WORK} a b -o ${WORK}/never.map --min-gain 0.2)
 run_cli_error("out of range" "--min-gain.*-0.5" fuzzy-map ${WORK} a b -o ${WORK}/never.map --consistent-blended --min-gain -0.5)
 run_cli_error("out of range" "--threads: must be >= 0, got -1" generate chairs 2 -o ${WORK}/never --threads -1)
 list(FIND commands explore explore_index)
@@ -190,6 +191,16 @@ file(SHA256 ${WORK}/fuzzy_out/fuzzy.bin second_run)
 file(TIMESTAMP ${one_pair} pair_time_again "%s")
 if(NOT first_run STREQUAL second_run OR NOT pair_time STREQUAL pair_time_again)
   message(FATAL_ERROR "a resumed fuzzy run with another thread count changed its results or redid an alignment")
+endif()
+# The caches hold 32-sample records and up-axis-1 alignments: a rerun asking for others is refused, by option,
+# and leaves the folder as it was.
+run_cli_error("rerun with other samples" "records was made with samples 32; this run asks for 64 \\(option --samples\\)"
+              fuzzy ${WORK}/fuzzy_in -o ${WORK}/fuzzy_out --samples 64)
+run_cli_error("rerun with another up axis" "pairs was made with up 1; this run asks for 2 \\(option --up\\)"
+              fuzzy ${WORK}/fuzzy_in -o ${WORK}/fuzzy_out --samples 32 --up 2)
+file(SHA256 ${WORK}/fuzzy_out/fuzzy.bin after_refused)
+if(NOT first_run STREQUAL after_refused)
+  message(FATAL_ERROR "a refused fuzzy rerun changed the results")
 endif()
 run_cli(0 out fuzzy-map ${WORK}/fuzzy_out ${stem0} ${stem1} -o ${WORK}/a_b.map)
 file(STRINGS ${WORK}/a_b.map map_lines)
