@@ -17,7 +17,10 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 #include <boost/graph/boykov_kolmogorov_max_flow.hpp>
-#include <boost/graph/compressed_sparse_row_graph.hpp>
+#include <boost/graph/graph_traits.hpp>
+#include <boost/iterator/counting_iterator.hpp>
+#include <boost/iterator/transform_iterator.hpp>
+#include <boost/property_map/function_property_map.hpp>
 #include <boost/property_map/property_map.hpp>
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
@@ -37,13 +40,36 @@ struct potts_edge {
 
 namespace detail {
 
-/// The s-t network of one expansion move, solved by Boost's Boykov-Kolmogorov max-flow on a compressed sparse row
-/// graph. Arcs are stored flat and every buffer is reused across moves: an adjacency_list would allocate once per
-/// arc (its edge properties live on the heap), which made allocation most of the cost of labeling a shape.
-class expansion_network {
+/// An arc of a flow_network: its tail and its position in the network's arc arrays.
+struct flow_arc {
+  std::size_t tail = 0, index = 0;
+  friend bool operator==(const flow_arc&, const flow_arc&) = default;
+};
+
+/// The s-t network of one expansion move in compressed sparse row form, as a graph Boost's Boykov-Kolmogorov
+/// max-flow runs on (VertexList, EdgeList and Incidence graph). Its arrays are reused from move to move: an
+/// adjacency_list allocates every arc's properties on the heap, and a fresh CSR graph per move made the
+/// allocator hand memory back to the kernel and fault it in again; both dominated the labeling time.
+class flow_network {
  public:
-  using graph = boost::compressed_sparse_row_graph<boost::directedS>;
-  using edge = boost::graph_traits<graph>::edge_descriptor;
+  struct arc_at {  // position -> arc
+    const std::vector<std::size_t>* tails = nullptr;
+    flow_arc operator()(std::size_t k) const { return {(*tails)[k], k}; }
+  };
+  using vertex_descriptor = std::size_t;
+  using edge_descriptor = flow_arc;
+  using directed_category = boost::directed_tag;
+  using edge_parallel_category = boost::allow_parallel_edge_tag;
+  struct traversal_category : boost::vertex_list_graph_tag, boost::edge_list_graph_tag, boost::incidence_graph_tag {};
+  using vertices_size_type = std::size_t;
+  using edges_size_type = std::size_t;
+  using degree_size_type = std::size_t;
+  using vertex_iterator = boost::counting_iterator<std::size_t>;
+  using edge_iterator = boost::transform_iterator<arc_at, boost::counting_iterator<std::size_t>, flow_arc, flow_arc>;
+  using out_edge_iterator = edge_iterator;
+  using adjacency_iterator = void;
+  using in_edge_iterator = void;
+  static vertex_descriptor null_vertex() { return std::numeric_limits<std::size_t>::max(); }
 
   void reset(std::size_t vertices) {
     vertices_ = vertices;
@@ -60,47 +86,66 @@ class expansion_network {
   /// Max-flow from `source` to `sink`; afterwards on_source_side(v) says which side of the minimum cut v is on.
   void solve(std::size_t source, std::size_t sink) {
     const std::size_t m = tail_.size();
-    // Stable counting sort of the arcs by tail: the CSR graph wants them sorted by source.
-    offset_.assign(vertices_ + 1, 0);
-    for (const auto u : tail_) ++offset_[u + 1];
-    for (std::size_t v = 0; v < vertices_; ++v) offset_[v + 1] += offset_[v];
+    // Stable counting sort of the arcs by tail.
+    row_start_.assign(vertices_ + 1, 0);
+    for (const auto u : tail_) ++row_start_[u + 1];
+    for (std::size_t v = 0; v < vertices_; ++v) row_start_[v + 1] += row_start_[v];
+    next_.assign(row_start_.begin(), row_start_.end() - 1);
     position_.resize(m);
-    sorted_.resize(m);
-    for (std::size_t k = 0; k < m; ++k) {
-      position_[k] = offset_[tail_[k]]++;
-      sorted_[position_[k]] = {tail_[k], head_[k]};
-    }
-    const graph g(boost::edges_are_sorted, sorted_.begin(), sorted_.end(), vertices_, m);
+    for (std::size_t k = 0; k < m; ++k) position_[k] = next_[tail_[k]]++;
+    sorted_tail_.resize(m);
+    sorted_head_.resize(m);
     capacity_.resize(m);
     residual_.resize(m);
     reverse_.resize(m);
     for (std::size_t k = 0; k < m; ++k) {
-      const std::size_t twin = k ^ 1;  // arcs were added in pairs
-      capacity_[position_[k]] = capacity_in_order_[k];
-      reverse_[position_[k]] = edge(head_[k], position_[twin]);
+      const std::size_t at = position_[k], twin = position_[k ^ 1];  // arcs were added in pairs
+      sorted_tail_[at] = tail_[k];
+      sorted_head_[at] = head_[k];
+      capacity_[at] = capacity_in_order_[k];
+      reverse_[at] = {head_[k], twin};
     }
-    predecessor_.assign(vertices_, edge());
+    predecessor_.assign(vertices_, flow_arc{});
     color_.assign(vertices_, boost::white_color);
     distance_.assign(vertices_, 0);
-    const auto edge_id = boost::get(boost::edge_index, g);
-    const auto vertex_id = boost::get(boost::vertex_index, g);
-    boost::boykov_kolmogorov_max_flow(
-        g, boost::make_iterator_property_map(capacity_.begin(), edge_id),
-        boost::make_iterator_property_map(residual_.begin(), edge_id),
-        boost::make_iterator_property_map(reverse_.begin(), edge_id),
-        boost::make_iterator_property_map(predecessor_.begin(), vertex_id),
-        boost::make_iterator_property_map(color_.begin(), vertex_id),
-        boost::make_iterator_property_map(distance_.begin(), vertex_id), vertex_id, source, sink);
+    const auto arc_id = boost::make_function_property_map<flow_arc>([](const flow_arc& a) { return a.index; });
+    const boost::typed_identity_property_map<std::size_t> vertex_id;
+    boost::boykov_kolmogorov_max_flow(*this, boost::make_iterator_property_map(capacity_.begin(), arc_id),
+                                      boost::make_iterator_property_map(residual_.begin(), arc_id),
+                                      boost::make_iterator_property_map(reverse_.begin(), arc_id),
+                                      boost::make_iterator_property_map(predecessor_.begin(), vertex_id),
+                                      boost::make_iterator_property_map(color_.begin(), vertex_id),
+                                      boost::make_iterator_property_map(distance_.begin(), vertex_id), vertex_id,
+                                      source, sink);
     source_color_ = color_[source];
   }
   [[nodiscard]] bool on_source_side(std::size_t v) const { return color_[v] == source_color_; }
 
+  // The Boost graph interface (found by argument-dependent lookup).
+  friend std::size_t num_vertices(const flow_network& g) { return g.vertices_; }
+  friend std::pair<vertex_iterator, vertex_iterator> vertices(const flow_network& g) {
+    return {vertex_iterator(0), vertex_iterator(g.vertices_)};
+  }
+  friend std::size_t num_edges(const flow_network& g) { return g.sorted_tail_.size(); }
+  friend std::pair<edge_iterator, edge_iterator> edges(const flow_network& g) { return g.arcs(0, g.sorted_tail_.size()); }
+  friend std::pair<out_edge_iterator, out_edge_iterator> out_edges(std::size_t v, const flow_network& g) {
+    return g.arcs(g.row_start_[v], g.row_start_[v + 1]);
+  }
+  friend std::size_t out_degree(std::size_t v, const flow_network& g) { return g.row_start_[v + 1] - g.row_start_[v]; }
+  friend std::size_t source(const flow_arc& a, const flow_network&) { return a.tail; }
+  friend std::size_t target(const flow_arc& a, const flow_network& g) { return g.sorted_head_[a.index]; }
+
  private:
+  [[nodiscard]] std::pair<edge_iterator, edge_iterator> arcs(std::size_t from, std::size_t to) const {
+    const arc_at at{&sorted_tail_};
+    return {edge_iterator(boost::counting_iterator<std::size_t>(from), at),
+            edge_iterator(boost::counting_iterator<std::size_t>(to), at)};
+  }
+
   std::size_t vertices_ = 0;
-  std::vector<std::size_t> tail_, head_, offset_, position_;
+  std::vector<std::size_t> tail_, head_, row_start_, next_, position_, sorted_tail_, sorted_head_;
   std::vector<double> capacity_in_order_, capacity_, residual_;
-  std::vector<std::pair<std::size_t, std::size_t>> sorted_;
-  std::vector<edge> reverse_, predecessor_;
+  std::vector<flow_arc> reverse_, predecessor_;
   std::vector<boost::default_color_type> color_;
   std::vector<long> distance_;
   boost::default_color_type source_color_ = boost::black_color;
@@ -180,7 +225,10 @@ inline alpha_expansion_result alpha_expansion(const Eigen::Ref<const Eigen::Matr
                           "alpha_expansion: initial label of node " + std::to_string(i) + " is outside [0, " +
                               std::to_string(L) + ")");
 
-  detail::expansion_network net;
+  // One network per thread, reused by every call (the fitter makes thousands): fresh arrays per call had the
+  // allocator return memory to the kernel and fault it back in, at a cost above that of the max-flows. It keeps
+  // the largest network a thread has solved: about 80 bytes per arc and 50 per node.
+  thread_local detail::flow_network net;
   alpha_expansion_result res;
   double energy = potts_energy(unary, edges, lab);
   std::vector<double> d(static_cast<std::size_t>(n));  // unary difference cost(x=1) - cost(x=0) per node
