@@ -2,6 +2,8 @@
 #include <doctest/doctest.h>
 
 #include <random>
+#include <thread>
+#include <utility>
 
 #include "shapestruct/templates/alpha_expansion.hpp"
 
@@ -61,6 +63,37 @@ TEST_CASE("alpha_expansion: three and four labels reach brute-force optimum on s
   }
   // Expansion moves are strong: on these small instances they almost always find the optimum.
   CHECK(optimal >= trials * 9 / 10);
+}
+
+TEST_CASE("alpha_expansion: the network reused between calls leaves no trace of an earlier, larger one") {
+  // Each thread keeps its max-flow arrays from call to call; a large problem, a small one and the large one again
+  // must give what they give alone, on this thread and on a fresh one.
+  auto grid = [](index_t side, unsigned seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    Eigen::MatrixXd U(side * side, 4);
+    for (index_t i = 0; i < U.rows(); ++i)
+      for (index_t l = 0; l < 4; ++l) U(i, l) = u(rng);
+    std::vector<potts_edge> E;
+    for (index_t r = 0; r < side; ++r)
+      for (index_t c = 0; c < side; ++c) {
+        if (c + 1 < side) E.push_back({r * side + c, r * side + c + 1, 0.4 * u(rng)});
+        if (r + 1 < side) E.push_back({r * side + c, (r + 1) * side + c, 0.4 * u(rng)});
+      }
+    return std::pair{U, E};
+  };
+  const auto [U_big, E_big] = grid(30, 1);
+  const auto [U_small, E_small] = grid(2, 2);
+  const auto first = alpha_expansion(U_big, E_big);
+  const auto small = alpha_expansion(U_small, E_small);
+  const auto again = alpha_expansion(U_big, E_big);
+  CHECK(again.labels == first.labels);
+  alpha_expansion_result big_alone, small_alone;
+  std::thread([&] { big_alone = alpha_expansion(U_big, E_big); }).join();
+  std::thread([&] { small_alone = alpha_expansion(U_small, E_small); }).join();
+  CHECK(big_alone.labels == first.labels);
+  CHECK(small_alone.labels == small.labels);
+  CHECK(first.energy == doctest::Approx(potts_energy(U_big, E_big, first.labels)));
 }
 
 TEST_CASE("alpha_expansion: strong smoothness gives one label") {
