@@ -2,7 +2,7 @@
 # The main job: generates a collection of chairs with ground truth and runs `shapestruct analyze` on it (issue
 # 15): shape checks, part templates, their accuracy against the generator's labels, fuzzy correspondences and a
 # static HTML report. Prints the measured accuracy, where the report is and how to open the explorer.
-# Usage: scripts/demo.sh PATH/TO/shapestruct OUTPUT_DIR [N_CHAIRS]     (default 40 chairs, about 40 s on 2 cores)
+# Usage: scripts/demo.sh PATH/TO/shapestruct OUTPUT_DIR [N_CHAIRS]     (default 40 chairs, about 20 s on 2 cores)
 set -euo pipefail
 cli=$1
 out=$2
