@@ -47,9 +47,8 @@ struct flow_arc {
 };
 
 /// The s-t network of one expansion move in compressed sparse row form, as a graph Boost's Boykov-Kolmogorov
-/// max-flow runs on (VertexList, EdgeList and Incidence graph). Its arrays are reused from move to move: an
-/// adjacency_list allocates every arc's properties on the heap, and a fresh CSR graph per move made the
-/// allocator hand memory back to the kernel and fault it in again; both dominated the labeling time.
+/// max-flow runs on (VertexList, EdgeList and Incidence graph). Flat arrays reused from move to move, because
+/// allocating per arc or per move cost more than the max-flows (docs/part_templates.md).
 class flow_network {
  public:
   struct arc_at {  // position -> arc
