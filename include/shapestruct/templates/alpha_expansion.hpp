@@ -239,7 +239,6 @@ inline alpha_expansion_result alpha_expansion(const Eigen::Ref<const Eigen::Matr
       // Binary move: x_i = 0 keeps l_i, x_i = 1 takes alpha. Nodes already labeled alpha stay (x_i = 0 = 1).
       const auto src = static_cast<std::size_t>(n), snk = static_cast<std::size_t>(n + 1);
       net.reset(static_cast<std::size_t>(n + 2));
-      auto add_arc = [&](std::size_t u, std::size_t v, double c) { net.add_arc(u, v, c); };
       for (index_t i = 0; i < n; ++i) {
         const auto l = lab[static_cast<std::size_t>(i)];
         d[static_cast<std::size_t>(i)] = (l == alpha) ? 0.0 : unary(i, alpha) - unary(i, l);
@@ -265,13 +264,13 @@ inline alpha_expansion_result alpha_expansion(const Eigen::Ref<const Eigen::Matr
         d[static_cast<std::size_t>(e.a)] += C - A;
         d[static_cast<std::size_t>(e.b)] += 0.0 - C;  // D = 0
         const double pair = B + C - A;
-        if (pair > 0) add_arc(static_cast<std::size_t>(e.a), static_cast<std::size_t>(e.b), pair);
+        if (pair > 0) net.add_arc(static_cast<std::size_t>(e.a), static_cast<std::size_t>(e.b), pair);
       }
       for (index_t i = 0; i < n; ++i) {
         if (lab[static_cast<std::size_t>(i)] == alpha) continue;
         const double di = d[static_cast<std::size_t>(i)];
-        if (di > 0) add_arc(src, static_cast<std::size_t>(i), di);   // paying di when x_i = 1 (sink side)
-        else if (di < 0) add_arc(static_cast<std::size_t>(i), snk, -di);  // paying -di when x_i = 0
+        if (di > 0) net.add_arc(src, static_cast<std::size_t>(i), di);   // paying di when x_i = 1 (sink side)
+        else if (di < 0) net.add_arc(static_cast<std::size_t>(i), snk, -di);  // paying -di when x_i = 0
       }
       net.solve(src, snk);
       cand = lab;
