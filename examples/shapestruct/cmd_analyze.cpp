@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -26,6 +27,7 @@
 
 #include "command.hpp"
 #include "feature_point_accuracy.hpp"
+#include "file_fingerprint.hpp"
 #include "fuzzy_run.hpp"
 #include "option_checks.hpp"
 #include "process_group.hpp"
@@ -815,6 +817,7 @@ void run_report_stage(const analyze_settings& s, const std::vector<fs::path>& fi
 std::string describe(const std::string& rel) {
   auto ends = [&](const std::string& suf) { return rel.size() >= suf.size() && rel.compare(rel.size() - suf.size(), suf.size(), suf) == 0; };
   auto starts = [&](const std::string& pre) { return rel.rfind(pre, 0) == 0; };
+  if (ends("/.settings.json")) return "what the stage was made with (shape files, options): a rerun with others is refused";
   if (rel == "inspect/summary.json") return "per shape: usable or not (and why), closed genus-0 or not, topology in one line";
   if (starts("inspect/")) return "check_mesh report of one shape: the object `shapestruct inspect --json` prints for it";
   if (rel == "templates/templates.json") return "the learned template set (`shapestruct templates --template` reads it)";
@@ -894,6 +897,101 @@ struct timings_file {
   }
 };
 
+/// What each stage's results depend on, recorded in OUT/STAGE/.settings.json when the stage starts. A rerun into
+/// the same OUT with other shapes or options would otherwise skip finished stages (or resume half-done ones) and
+/// mix old results with new ones without a word, so it is refused before anything is written, naming the option.
+/// The values are fingerprints (file names, sizes and content hashes), not paths: the same input moved or named
+/// by another relative path is the same input.
+class stage_settings {
+ public:
+  stage_settings(const analyze_settings& s, const std::vector<fs::path>& shape_files, const std::string& template_file,
+                 long long learn_subset) {
+    const ojson shapes = files_fingerprint(shape_files);
+    const ojson templ = template_file.empty() ? ojson("automatic") : ojson(fingerprint(template_file));
+    std::vector<fs::path> truth_files;
+    if (fs::is_directory(s.truth))
+      for (const auto& e : fs::directory_iterator(s.truth))
+        if (e.is_regular_file() && (e.path().extension() == ".seg" || e.path().extension() == ".vts" ||
+                                    e.path().extension() == ".pid"))
+          truth_files.push_back(e.path());
+    std::sort(truth_files.begin(), truth_files.end());
+    const ojson truth = files_fingerprint(truth_files);
+    auto with = [](std::initializer_list<std::pair<const char*, ojson>> kv) {
+      auto o = ojson::object();
+      for (const auto& [k, v] : kv) o[k] = v;
+      return o;
+    };
+    wanted_["inspect"] = with({{"shapes", shapes}});
+    wanted_["templates"] = with({{"shapes", shapes}, {"template", templ}, {"learn_subset", learn_subset}});
+    wanted_["fuzzy"] = with({{"shapes", shapes}, {"mode", s.mode}});
+    const ojson all = with({{"shapes", shapes}, {"template", templ}, {"learn_subset", learn_subset}, {"mode", s.mode},
+                            {"truth", truth}});
+    wanted_["evaluate"] = all;
+    wanted_["report"] = all;
+  }
+
+  /// Throws cli::usage_error at the first setting a stage folder of `out` was made with that this run changes.
+  void check(const fs::path& out) const {
+    for (const char* st : stage_names) {
+      const ojson stored = read_json_or_null(out / st / ".settings.json");
+      if (!stored.is_object()) continue;
+      for (const auto& [key, value] : wanted_.at(st).items()) {
+        const ojson* old = json_member(stored, key);
+        if (old && *old == value) continue;
+        std::string stale;
+        for (const char* later : stage_names) {
+          const ojson o = read_json_or_null(out / later / ".settings.json");
+          const ojson* v = o.is_object() ? json_member(o, key) : nullptr;
+          if (v && *v != value) stale += std::string(stale.empty() ? "" : ", ") + later + "/";
+        }
+        throw cli::usage_error((out / st).string() + " was made with " + what_differs(key, old, value) +
+                               ". Use another output folder, or delete " + stale + " there to make " +
+                               (stale.find(',') == std::string::npos ? "it" : "them") + " again");
+      }
+    }
+  }
+
+  /// Records what `stage` is made with (before its body runs, so that a half-done stage is covered too).
+  void record(const fs::path& out, const std::string& stage) const {
+    if (!fs::exists(out / stage / ".settings.json")) write_json_atomic(out / stage / ".settings.json", wanted_.at(stage));
+  }
+
+ private:
+  static ojson files_fingerprint(const std::vector<fs::path>& files) {
+    auto a = ojson::array();
+    for (const auto& f : files) a.push_back(ojson::object({{"file", f.filename().string()}, {"is", fingerprint(f)}}));
+    return a;
+  }
+  static std::string fingerprint(const fs::path& f) {
+    try {
+      return cli::file_fingerprint(f);
+    } catch (const io_error&) {
+      return "unreadable";  // the inspect stage reports it and skips the shape
+    }
+  }
+  static std::string what_differs(const std::string& key, const ojson* old, const ojson& now) {
+    if (key == "shapes") {
+      std::map<std::string, std::string> then, here;
+      for (const auto& e : old ? *old : ojson::array()) then[e.at("file").get<std::string>()] = e.at("is").get<std::string>();
+      for (const auto& e : now) here[e.at("file").get<std::string>()] = e.at("is").get<std::string>();
+      for (const auto& [f, b] : here) {
+        const auto it = then.find(f);
+        if (it == then.end()) return "other shape files (" + f + " is new in DIR)";
+        if (it->second != b) return "other shape files (" + f + " was " + it->second + ", is now " + b + ")";
+      }
+      for (const auto& [f, b] : then)
+        if (!here.count(f)) return "other shape files (" + f + " is no longer in DIR)";
+      return "other shape files";
+    }
+    const std::string was = old ? old->dump() : std::string("(not recorded)");
+    if (key == "template") return "--template " + was + "; this run asks for " + now.dump() + " (option --template)";
+    if (key == "learn_subset") return "--learn-subset " + was + "; this run asks for " + now.dump() + " (option --learn-subset)";
+    if (key == "mode") return "--mode " + was + "; this run asks for " + now.dump() + " (option --mode)";
+    return "other ground truth (STEM.seg / STEM.vts / STEM.pid files, option --truth)";
+  }
+  std::map<std::string, ojson> wanted_;
+};
+
 /// The command line of `shapestruct analyze`.
 struct analyze_command_line {
   std::string input, out, truth, mode = "auto", template_file;
@@ -928,6 +1026,8 @@ int run_analyze(const analyze_command_line& c) {
   fopt.share = s.share;
   const auto all_files = cli::shape_files_in(s.input);
   if (all_files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + c.input);
+  const stage_settings settings(s, all_files, c.template_file, c.learn_subset);
+  if (fs::is_directory(s.out)) settings.check(s.out);  // before anything in OUT is touched
   fs::create_directories(s.out);
   // Temporaries of writes cut short by an interruption (never listed, never read): cleared before any rank writes.
   if (s.share.leader())
@@ -954,6 +1054,7 @@ int run_analyze(const analyze_command_line& c) {
     say("stage " + std::to_string(stage_no) + "/5 " + name);
     const auto t0 = steady::now();
     fs::create_directories(s.out / name);
+    if (leader) settings.record(s.out, name);
     const std::string status = body();
     (void)s.share.all_gather({});
     if (!leader) return;
@@ -1138,7 +1239,8 @@ cli::command_fn setup_analyze(CLI::App& app) {
       "and OUT/manifest.json (every file and what it is, stages, mode, skipped shapes, accuracy) and\n"
       "OUT/timings.json (seconds per stage). Each stage ends by writing OUT/STAGE/.done: run the same command\n"
       "again after an interruption and finished stages (and finished shapes and pairs) are not redone; the\n"
-      "result files are the same as those of an uninterrupted run. Across MPI ranks: mpirun -np R\n"
+      "result files are the same as those of an uninterrupted run. A rerun with other shape files or options\n"
+      "is refused, naming them (OUT/STAGE/.settings.json records them). Across MPI ranks: mpirun -np R\n"
       "shapestruct-mpi analyze ... (docs/cluster.md). See docs/analyze.md.");
   return [c] { return run_analyze(*c); };
 }

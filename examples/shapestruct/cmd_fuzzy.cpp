@@ -8,12 +8,14 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <unistd.h>
 
 #include "command.hpp"
+#include "file_fingerprint.hpp"
 #include "fuzzy_run.hpp"
 #include "option_checks.hpp"
 #include "shapestruct/fuzzy/collection_records.hpp"
@@ -98,7 +100,8 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
 }
 
 /// OUT/cache.json records what the resume caches were made with: records/ (samples and their metric) and pairs/
-/// (alignment mode, up axis). A rerun into the same folder with other settings would mix old records or
+/// (alignment mode, up axis), and every shape file's fingerprint (size, content hash): the caches are keyed by
+/// file name, so an edited file would otherwise keep its old record and alignments. A rerun into the same folder with other settings would mix old records or
 /// alignments into the new run without a word, so it is refused, naming the option.
 class cache_settings {
  public:
@@ -117,6 +120,39 @@ class cache_settings {
       }
     if (!stored_.is_object()) stored_ = nlohmann::ordered_json::object();
     stored_[part] = wanted;
+  }
+  /// Throws cli::usage_error when a shape file changed since its record (records/STEM.rec) or an alignment naming
+  /// it (pairs/A__B.align) was made; otherwise records every file's fingerprint under "shapes".
+  void require_shapes(const std::vector<fs::path>& files) {
+    if (!stored_.is_object()) stored_ = nlohmann::ordered_json::object();
+    if (!stored_.contains("shapes") || !stored_["shapes"].is_object()) stored_["shapes"] = nlohmann::ordered_json::object();
+    auto& known = stored_["shapes"];
+    const fs::path out = file_.parent_path();
+    std::set<std::string> aligned;  // the shapes some cached alignment was made from
+    if (fs::is_directory(out / "pairs"))
+      for (const auto& e : fs::directory_iterator(out / "pairs")) {
+        const std::string n = e.path().stem().string();
+        const auto cut = n.find("__");
+        if (e.path().extension() != ".align" || cut == std::string::npos) continue;
+        aligned.insert(n.substr(0, cut));
+        aligned.insert(n.substr(cut + 2));
+      }
+    for (const auto& f : files) {
+      const std::string stem = f.stem().string();
+      std::string now;
+      try {
+        now = cli::file_fingerprint(f);
+      } catch (const io_error&) {
+        continue;  // unreadable: the records step reports it and skips the shape
+      }
+      const bool cached = fs::exists(out / "records" / (stem + ".rec")) || aligned.count(stem) != 0;
+      if (cached && known.contains(stem) && known[stem] != now)
+        throw cli::usage_error((out / "records").string() + " and pairs/ hold results made from another version of " +
+                               f.string() + " (" + known[stem].get<std::string>() + " then, " + now +
+                               " now). Use another output folder, or delete records/" + stem +
+                               ".rec and the pairs/ files naming " + stem + " there to make them again");
+      known[stem] = now;
+    }
   }
   void write() const { write_json_file(file_.string(), stored_); }
 
@@ -153,6 +189,8 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
   cache_settings cache(out_dir / "cache.json");
   cache.require("records", "records",
                 {{"samples", o.samples}, {"metric", o.mode == "extrinsic" ? "euclidean" : "geodesic where possible"}});
+  cache.require_shapes(files);
+  if (writer) cache.write();  // before any record is made: an interrupted run still knows what its records came from
   auto col = make_collection_records(files, ro);
   bar.finish();
   const double t_records = since(t_start);

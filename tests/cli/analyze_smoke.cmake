@@ -130,6 +130,27 @@ if(NOT before STREQUAL again)
   message(FATAL_ERROR "a second run changed files")
 endif()
 
+# A rerun into the same OUT with other options or other shapes is refused before anything is written: finished
+# stages would otherwise be skipped and their old results kept without a word.
+run_cli(2 other_mode analyze ${IN} -o ${OUT} --mode intrinsic --quiet)
+if(NOT other_mode MATCHES "--mode \"auto\"; this run asks for \"intrinsic\" \\(option --mode\\)" OR NOT other_mode MATCHES "delete fuzzy/, evaluate/, report/")
+  message(FATAL_ERROR "a rerun with another --mode was not refused with the option and the stale folders named:\n${other_mode}")
+endif()
+run_cli(2 other_subset analyze ${IN} -o ${OUT} --learn-subset 5 --quiet)
+if(NOT other_subset MATCHES "option --learn-subset" OR NOT other_subset MATCHES "delete templates/, evaluate/, report/")
+  message(FATAL_ERROR "a rerun with another --learn-subset was not refused:\n${other_subset}")
+endif()
+file(WRITE ${IN}/extra.off "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+run_cli(2 other_shapes analyze ${IN} -o ${OUT} --quiet)
+file(REMOVE ${IN}/extra.off)
+if(NOT other_shapes MATCHES "extra.off is new in DIR")
+  message(FATAL_ERROR "a rerun on other shapes was not refused, naming the new file:\n${other_shapes}")
+endif()
+hash_tree(${OUT} refused "^$")
+if(NOT before STREQUAL refused)
+  message(FATAL_ERROR "a refused rerun changed files in OUT")
+endif()
+
 # As an interruption leaves it: templates, evaluate, fuzzy and report unfinished, some of their files missing.
 file(GLOB pairs_before RELATIVE ${OUT}/fuzzy/pairs ${OUT}/fuzzy/pairs/*.align)
 file(REMOVE ${OUT}/templates/.done ${OUT}/templates/chair_000005.fit.json ${OUT}/templates/chair_000005.seg

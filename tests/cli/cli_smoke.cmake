@@ -198,6 +198,16 @@ run_cli_error("rerun with other samples" "records was made with samples 32; this
               fuzzy ${WORK}/fuzzy_in -o ${WORK}/fuzzy_out --samples 64)
 run_cli_error("rerun with another up axis" "pairs was made with up 1; this run asks for 2 \\(option --up\\)"
               fuzzy ${WORK}/fuzzy_in -o ${WORK}/fuzzy_out --samples 32 --up 2)
+# The caches are keyed by file name: an edited shape file (here one more line at its end) is refused too, naming
+# the file; put back, it is accepted again.
+file(GLOB fuzzy_inputs ${WORK}/fuzzy_in/*.off)
+list(GET fuzzy_inputs 2 edited)
+file(READ ${edited} edited_text)
+file(APPEND ${edited} "\n")
+get_filename_component(edited_name ${edited} NAME)
+run_cli_error("rerun after a shape file changed" "another version of [^\n]*${edited_name}"
+              fuzzy ${WORK}/fuzzy_in -o ${WORK}/fuzzy_out --samples 32)
+file(WRITE ${edited} "${edited_text}")
 file(SHA256 ${WORK}/fuzzy_out/fuzzy.bin after_refused)
 if(NOT first_run STREQUAL after_refused)
   message(FATAL_ERROR "a refused fuzzy rerun changed the results")
