@@ -224,6 +224,7 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
   fuzzy_collection_options fo;
   fo.threads = static_cast<int>(o.threads);
   fo.graph.edges_per_shape = static_cast<index_t>(o.edges_per_shape);
+  fo.alignments_in_memory = o.alignments_in_memory;
   fo.embedding.time = o.diffusion_time;
   fo.embedding.dimensions = static_cast<index_t>(o.dimensions);
   fo.cache_folder = out_dir / "pairs";
@@ -363,6 +364,10 @@ cli::command_fn setup_fuzzy(CLI::App& app) {
   app.add_option("--dimensions", o.dimensions, "dimensions of the diffusion embedding (default 64)")
       ->type_name("D")
       ->check(cli::at_least(1LL));
+  app.add_flag("--alignments-in-memory", o.alignments_in_memory,
+               "keep every pairwise alignment's scores in memory instead of reading them\n"
+               "back from OUT/pairs each round: a little faster, memory grows with the pairs;\n"
+               "the results are the same");
   app.add_flag("--quiet", o.quiet, "no progress display");
   app.footer(
       "Fuzzy correspondences of every shape file (.off .obj .ply .stl) in DIR (chapter 4): K farthest-point samples\n"

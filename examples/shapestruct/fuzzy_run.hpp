@@ -24,6 +24,7 @@ struct fuzzy_cli_options {
   long long up = 1;
   double diffusion_time = 10.0;
   long long dimensions = 64;
+  bool alignments_in_memory = false;  ///< keep the alignments' scores in memory rather than re-reading OUT/pairs
   bool quiet = false;
   /// true (`shapestruct fuzzy`): collection.json holds "seconds" and iterations.tsv the seconds per step.
   /// false (`shapestruct analyze`): neither does, so the files are the same on every run; the times are

@@ -254,6 +254,49 @@ TEST_CASE("fuzzy collection: one and two threads give identical results, and a r
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("fuzzy collection: alignments read back from the cache folder give what alignments kept in memory give") {
+  const int N = 10, K = 8;
+  const auto records = planted_records(N, K);
+  const planted_aligner aligner{K, {2, 3}};
+  const auto dir = std::filesystem::temp_directory_path() / "shapestruct_test_fuzzy_spill";
+  std::filesystem::remove_all(dir);
+  ss::fuzzy_collection_options o;
+  o.embedding.dimensions = 12;
+  o.threads = 2;
+  const auto no_folder = ss::compute_fuzzy_correspondences(records, aligner, o);
+  o.cache_folder = dir;
+  REQUIRE_FALSE(o.alignments_in_memory);  // the default with a folder: read back
+  const auto read_back = ss::compute_fuzzy_correspondences(records, aligner, o);
+  CHECK(read_back.pairs_computed == read_back.pairs_aligned);
+  o.alignments_in_memory = true;
+  const auto kept = ss::compute_fuzzy_correspondences(records, aligner, o);
+  CHECK(kept.pairs_computed == 0);
+  REQUIRE(read_back.log.size() > 1);  // the graph optimisation ran, visiting every edge's alternatives
+  check_same_result(no_folder, read_back);
+  check_same_result(read_back, kept);
+  CHECK((no_folder.fuzzy.tau() - read_back.fuzzy.tau()).cwiseAbs().maxCoeff() == 0.0f);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("alignment store: reading back keeps only summaries; a cache file lost during the run is an io_error") {
+  const int K = 6;
+  const auto records = planted_records(4, K);
+  const planted_aligner aligner{K, {1, 2}};
+  const auto dir = std::filesystem::temp_directory_path() / "shapestruct_test_alignment_store";
+  std::filesystem::remove_all(dir);
+  ss::alignment_store store(records, dir, /*in_memory=*/false);
+  store.ensure({{0, 1}, {2, 1}}, aligner, 1);
+  CHECK(store.size() == 2);
+  CHECK(store.contains(1, 2));
+  CHECK(store.alternative_count(0, 1) > 0);
+  const auto n = store.visit(1, 2, [](const ss::pair_alignment& pa) { return pa.source * 10 + pa.target; });
+  CHECK(n == 12);  // the smaller index is the source
+  CHECK_THROWS_AS((void)store.visit(0, 3, [](const ss::pair_alignment&) { return 0; }), std::out_of_range);
+  std::filesystem::remove(store.file_of({0, 1}));
+  CHECK_THROWS_AS((void)store.visit(1, 0, [](const ss::pair_alignment&) { return 0; }), ss::io_error);
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("fuzzy collection: fewer than two shapes and bad options are invalid_input") {
   const planted_aligner aligner{4, {0, 1}};
   CHECK_THROWS_AS((void)ss::compute_fuzzy_correspondences(planted_records(1, 4), aligner), ss::invalid_input);

@@ -30,14 +30,22 @@ namespace shapestruct {
 /// the moment it is finished (atomically, named after the two shapes), and read back instead of recomputed: an
 /// interrupted run resumes where it stopped and loses at most the alignments in flight. An alignment depends only
 /// on its pair, so the store's contents do not depend on the thread count or on where a run was interrupted.
+///
+/// With a folder the score blocks need not stay in memory: they are most of a collection run's memory (about 6
+/// pairs per shape, a few alternatives each, a sparse K x K block per alternative) and grow with the collection.
+/// Unless `in_memory` is set, the store keeps only each pair's summary and reads the pair back from its file
+/// whenever it is visited. The file format is lossless, so results are the same either way.
 class alignment_store {
  public:
   using key = std::pair<index_t, index_t>;
 
   /// \param records the collection's shapes (names key the cache files)  \param folder "" = memory only
+  /// \param in_memory with a folder: keep every alignment in memory too (faster visits, memory grows with the
+  ///        pairs) rather than reading it back from its file; without a folder alignments are always in memory.
   /// \throws io_error (cannot_open) if the folder cannot be created.
-  explicit alignment_store(const std::vector<shape_record>& records, std::filesystem::path folder = {})
-      : records_(&records), folder_(std::move(folder)) {
+  explicit alignment_store(const std::vector<shape_record>& records, std::filesystem::path folder = {},
+                           bool in_memory = true)
+      : records_(&records), folder_(std::move(folder)), in_memory_(in_memory || folder_.empty()) {
     if (!folder_.empty()) {
       std::error_code ec;
       std::filesystem::create_directories(folder_, ec);
@@ -46,11 +54,26 @@ class alignment_store {
   }
 
   [[nodiscard]] static key make_key(index_t a, index_t b) { return a < b ? key{a, b} : key{b, a}; }
-  [[nodiscard]] bool contains(index_t a, index_t b) const { return alignments_.count(make_key(a, b)) != 0; }
-  /// The alignment of the pair (its source is the smaller index). \throws std::out_of_range if absent.
-  [[nodiscard]] const pair_alignment& at(index_t a, index_t b) const { return alignments_.at(make_key(a, b)); }
-  [[nodiscard]] std::size_t size() const noexcept { return alignments_.size(); }
-  [[nodiscard]] const std::map<key, pair_alignment>& all() const noexcept { return alignments_; }
+  [[nodiscard]] bool contains(index_t a, index_t b) const { return summaries_.count(make_key(a, b)) != 0; }
+  /// How many alternatives the pair's aligner produced (0: it rejected the pair). \throws std::out_of_range if absent.
+  [[nodiscard]] index_t alternative_count(index_t a, index_t b) const { return summaries_.at(make_key(a, b)).alternatives; }
+  /// The pair's initial alternative (highest global score). \throws std::out_of_range if absent.
+  [[nodiscard]] index_t initial(index_t a, index_t b) const { return summaries_.at(make_key(a, b)).initial; }
+  /// Calls fn(const pair_alignment&) with the pair's alignment (its source is the smaller index) and returns what
+  /// fn returns, by value (the alignment may be a temporary read from its file); safe from several threads at once.
+  /// \throws std::out_of_range if absent; io_error if its cache file was removed or damaged during the run.
+  template <class Fn>
+  auto visit(index_t a, index_t b, Fn&& fn) const {
+    const key k = make_key(a, b);
+    if (!summaries_.count(k)) throw std::out_of_range("alignment_store: the pair was never aligned");
+    if (in_memory_) return fn(alignments_.at(k));
+    const pair_alignment read = read_pair_alignment(file_of(k));
+    if (read.source != k.first || read.target != k.second || index_t(read.alternatives.size()) != summaries_.at(k).alternatives)
+      throw io_error(file_error::bad_value, file_of(k).string(), 0, 0,
+                     "the cached alignment changed during the run (another run writing into the same folder?)");
+    return fn(read);
+  }
+  [[nodiscard]] std::size_t size() const noexcept { return summaries_.size(); }
   /// Alignments computed in this process (the rest came from the cache).
   [[nodiscard]] std::size_t computed() const noexcept { return computed_; }
 
@@ -77,12 +100,12 @@ class alignment_store {
     std::set<key> queued;
     for (const auto& p0 : pairs) {
       const key p = make_key(p0.first, p0.second);
-      if (!alignments_.count(p) && queued.insert(p).second) requested.push_back(p);
+      if (!summaries_.count(p) && queued.insert(p).second) requested.push_back(p);
     }
     std::vector<key> todo;
     for (std::size_t r = 0; r < requested.size(); ++r) {
       if (!share.owns(r)) continue;
-      if (auto cached = read_cached(requested[r])) alignments_.emplace(requested[r], std::move(*cached));
+      if (auto cached = read_cached(requested[r])) keep(requested[r], std::move(*cached));
       else todo.push_back(requested[r]);
     }
     std::vector<pair_alignment> results(todo.size());
@@ -112,7 +135,7 @@ class alignment_store {
       if (on_done) on_done(done, todo.size());
     });
     for (std::size_t i = 0; i < todo.size(); ++i)
-      if (failure[i].empty()) alignments_.emplace(todo[i], std::move(results[i]));
+      if (failure[i].empty()) keep(todo[i], std::move(results[i]));
     computed_ += todo.size();
     if (!share.distributed()) return;
     std::string failed_pair;  // the first failure of any process, in part order
@@ -131,11 +154,19 @@ class alignment_store {
       if (!cached)
         throw io_error(file_error::cannot_open, file_of(requested[r]).string(), 0, 0,
                        "the alignment made by another process is missing or damaged");
-      alignments_.emplace(requested[r], std::move(*cached));
+      keep(requested[r], std::move(*cached));
     }
   }
 
  private:
+  struct summary {
+    index_t alternatives = 0;
+    index_t initial = 0;
+  };
+  void keep(const key& k, pair_alignment&& a) {
+    summaries_[k] = {static_cast<index_t>(a.alternatives.size()), a.initial};
+    if (in_memory_) alignments_.emplace(k, std::move(a));
+  }
   /// The cached alignment of p, if its file exists and holds p; nullopt otherwise (also for a damaged file, the
   /// leftover of an interrupted write of an older version: the pair is aligned again).
   [[nodiscard]] std::optional<pair_alignment> read_cached(const key& p) const {
@@ -153,7 +184,9 @@ class alignment_store {
 
   const std::vector<shape_record>* records_;
   std::filesystem::path folder_;
-  std::map<key, pair_alignment> alignments_;
+  bool in_memory_ = true;
+  std::map<key, summary> summaries_;         // every pair aligned so far
+  std::map<key, pair_alignment> alignments_;  // the pairs themselves, when kept in memory
   std::size_t computed_ = 0;
 };
 

@@ -50,6 +50,10 @@ struct fuzzy_collection_options {
   index_t ifc_stride = 4;
   int threads = 0;                       ///< 0 = all cores; results do not depend on it
   std::filesystem::path cache_folder{};  ///< pairwise alignments are cached here ("" = not cached)
+  /// With a cache folder: keep every alignment's score blocks in memory as well. Off, they are read back from the
+  /// folder whenever a round needs them, so memory holds only the chosen blocks while the matrix is built; the
+  /// results are the same (the cache format is lossless). Without a folder they are always in memory.
+  bool alignments_in_memory = false;
   /// Several processes: each aligns its share of every round's pairs and reads the others' from the cache
   /// folder (required then); the rest (embedding, optimisation, small next to the alignments) runs in every
   /// process alike, so they all hold the same result, the one a single process computes.
@@ -154,7 +158,7 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
   for (const auto& r : records) descriptors.push_back(r.descriptor);
   const alignment_graph g0 = initial_alignment_graph(descriptor_distance_matrix(descriptors), options.graph);
 
-  alignment_store store(records, options.cache_folder);
+  alignment_store store(records, options.cache_folder, options.alignments_in_memory);
   using key = alignment_store::key;
   std::map<key, index_t> chosen;  // the graph: edge -> alternative
   std::vector<index_t> sample_counts;
@@ -167,10 +171,21 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
   auto embed = [&](fuzzy_iteration& it) {
     const auto t0 = clock::now();
     progress("embed", 0, 1);
+    // The chosen blocks only, for as long as the matrix takes to copy them.
+    using score_block = Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>;
+    std::vector<std::pair<key, index_t>> graph(chosen.begin(), chosen.end());
+    std::vector<score_block> blocks(graph.size());
+    detail::parallel_for(static_cast<index_t>(graph.size()), detail::resolve_threads(options.threads, who), [&](index_t e) {
+      const auto& [k, alt] = graph[std::size_t(e)];
+      blocks[std::size_t(e)] = store.visit(k.first, k.second, [&](const pair_alignment& pa) {
+        return pa.alternatives[std::size_t(alt)].scores;
+      });
+    });
     std::vector<correspondence_edge> ce;
-    for (const auto& [k, alt] : chosen)
-      ce.push_back({k.first, k.second, &store.at(k.first, k.second).alternatives[std::size_t(alt)].scores});
+    for (std::size_t e = 0; e < graph.size(); ++e) ce.push_back({graph[e].first.first, graph[e].first.second, &blocks[e]});
     const correspondence_matrix C(sample_counts, ce, options.threads);
+    ce.clear();
+    blocks = {};
     auto e = embed_diffusion(C, options.embedding, solver);
     it.embedding_info = e.info;
     fuzzy_correspondence_options fo = options.fuzzy;
@@ -189,7 +204,7 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
     for (const auto& [a, b] : g0.edges) pairs.push_back(alignment_store::make_key(a, b));
     align(pairs);
     for (const auto& p : pairs)  // a pair the aligner rejected (no alternative) is no edge
-      if (!store.at(p.first, p.second).alternatives.empty()) chosen[p] = store.at(p.first, p.second).initial;
+      if (store.alternative_count(p.first, p.second) > 0) chosen[p] = store.initial(p.first, p.second);
     first.align_seconds = since(t0);
   }
   first.edges = static_cast<index_t>(chosen.size());
@@ -208,16 +223,18 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
     std::vector<double> best_score(edges.size());
     const unsigned workers = detail::resolve_threads(options.threads, who);
     detail::parallel_for(static_cast<index_t>(edges.size()), workers, [&](index_t e) {
-      const auto& pa = store.at(edges[std::size_t(e)].first, edges[std::size_t(e)].second);
-      const Eigen::MatrixXd F = f.block(pa.source, pa.target);
-      index_t arg = chosen.at(edges[std::size_t(e)]);
-      double best = detail::consistency_score(pa.alternatives[std::size_t(arg)], F);
-      for (std::size_t a = 0; a < pa.alternatives.size(); ++a) {
-        const double s = detail::consistency_score(pa.alternatives[a], F);
-        if (s > best) best = s, arg = static_cast<index_t>(a);
-      }
-      best_alt[std::size_t(e)] = arg;
-      best_score[std::size_t(e)] = best;
+      const key& k = edges[std::size_t(e)];
+      store.visit(k.first, k.second, [&](const pair_alignment& pa) {
+        const Eigen::MatrixXd F = f.block(pa.source, pa.target);
+        index_t arg = chosen.at(k);
+        double best = detail::consistency_score(pa.alternatives[std::size_t(arg)], F);
+        for (std::size_t a = 0; a < pa.alternatives.size(); ++a) {
+          const double s = detail::consistency_score(pa.alternatives[a], F);
+          if (s > best) best = s, arg = static_cast<index_t>(a);
+        }
+        best_alt[std::size_t(e)] = arg;
+        best_score[std::size_t(e)] = best;
+      });
     });
     double sum_score = 0;
     for (std::size_t e = 0; e < edges.size(); ++e) {
@@ -290,7 +307,7 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
       const auto t0 = clock::now();
       align(added);
       for (const auto& p : added)
-        if (!store.at(p.first, p.second).alternatives.empty()) chosen[p] = store.at(p.first, p.second).initial;
+        if (store.alternative_count(p.first, p.second) > 0) chosen[p] = store.initial(p.first, p.second);
       it.align_seconds = since(t0);
     }
     it.added = static_cast<index_t>(added.size());
@@ -307,10 +324,17 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
     out.log.push_back(it);
   }
 
-  for (const auto& [k, alt] : chosen) {
-    const auto& pa = store.at(k.first, k.second);
-    out.edges.push_back({k.first, k.second, alt,
-                         detail::consistency_score(pa.alternatives[std::size_t(alt)], f, k.first, k.second)});
+  {
+    const std::vector<std::pair<key, index_t>> graph(chosen.begin(), chosen.end());
+    std::vector<double> consistency(graph.size());
+    detail::parallel_for(static_cast<index_t>(graph.size()), detail::resolve_threads(options.threads, who), [&](index_t e) {
+      const auto& [k, alt] = graph[std::size_t(e)];
+      consistency[std::size_t(e)] = store.visit(k.first, k.second, [&](const pair_alignment& pa) {
+        return detail::consistency_score(pa.alternatives[std::size_t(alt)], f, k.first, k.second);
+      });
+    });
+    for (std::size_t e = 0; e < graph.size(); ++e)
+      out.edges.push_back({graph[e].first.first, graph[e].first.second, graph[e].second, consistency[e]});
   }
   {
     std::vector<std::pair<index_t, index_t>> final_edges;
