@@ -31,10 +31,10 @@ namespace shapestruct {
 /// interrupted run resumes where it stopped and loses at most the alignments in flight. An alignment depends only
 /// on its pair, so the store's contents do not depend on the thread count or on where a run was interrupted.
 ///
-/// With a folder the score blocks need not stay in memory: they are most of a collection run's memory (about 6
-/// pairs per shape, a few alternatives each, a sparse K x K block per alternative) and grow with the collection.
-/// Unless `in_memory` is set, the store keeps only each pair's summary and reads the pair back from its file
-/// whenever it is visited. The file format is lossless, so results are the same either way.
+/// With a folder the score blocks need not stay in memory: they are the largest part of a collection run's
+/// memory (about 6 pairs per shape, a few alternatives each, a sparse K x K block per alternative) and grow with
+/// the collection. Unless `in_memory` is set, the store keeps only each pair's summary and reads the pair back
+/// from its file whenever it is visited. The file format is lossless, so results are the same either way.
 class alignment_store {
  public:
   using key = std::pair<index_t, index_t>;
