@@ -904,10 +904,10 @@ struct timings_file {
 /// by another relative path is the same input.
 class stage_settings {
  public:
-  stage_settings(const analyze_settings& s, const std::vector<fs::path>& shape_files, const std::string& template_file,
-                 long long learn_subset) {
+  stage_settings(const analyze_settings& s, const std::vector<fs::path>& shape_files,
+                 const cli::templates_cli_options& t, const cli::fuzzy_cli_options& f) {
     const ojson shapes = files_fingerprint(shape_files);
-    const ojson templ = template_file.empty() ? ojson("automatic") : ojson(fingerprint(template_file));
+    const ojson templ = t.template_file.empty() ? ojson("automatic") : ojson(fingerprint(t.template_file));
     std::vector<fs::path> truth_files;
     if (fs::is_directory(s.truth))
       for (const auto& e : fs::directory_iterator(s.truth))
@@ -915,17 +915,27 @@ class stage_settings {
                                     e.path().extension() == ".pid"))
           truth_files.push_back(e.path());
     std::sort(truth_files.begin(), truth_files.end());
-    const ojson truth = files_fingerprint(truth_files);
-    auto with = [](std::initializer_list<std::pair<const char*, ojson>> kv) {
-      auto o = ojson::object();
-      for (const auto& [k, v] : kv) o[k] = v;
-      return o;
-    };
-    wanted_["inspect"] = with({{"shapes", shapes}});
-    wanted_["templates"] = with({{"shapes", shapes}, {"template", templ}, {"learn_subset", learn_subset}});
-    wanted_["fuzzy"] = with({{"shapes", shapes}, {"mode", s.mode}});
-    const ojson all = with({{"shapes", shapes}, {"template", templ}, {"learn_subset", learn_subset}, {"mode", s.mode},
-                            {"truth", truth}});
+    auto templates = ojson::object({{"shapes", shapes},
+                                    {"template", templ},
+                                    {"learn_subset", t.learn_subset},
+                                    {"learn_best", t.learn_best},
+                                    {"no_learn", t.no_learn},
+                                    {"parts", t.parts},
+                                    {"points", t.points},
+                                    {"up", t.up}});
+    auto fuzzy = ojson::object({{"shapes", shapes},
+                                {"mode", f.mode},
+                                {"samples", f.samples},
+                                {"edges_per_shape", f.edges_per_shape},
+                                {"diffusion_time", f.diffusion_time},
+                                {"dimensions", f.dimensions},
+                                {"up", f.up}});
+    wanted_["inspect"] = ojson::object({{"shapes", shapes}});
+    wanted_["templates"] = templates;
+    wanted_["fuzzy"] = fuzzy;
+    ojson all = templates;
+    for (const auto& [k, v] : fuzzy.items()) all[k] = v;
+    all["truth"] = files_fingerprint(truth_files);
     wanted_["evaluate"] = all;
     wanted_["report"] = all;
   }
@@ -983,20 +993,22 @@ class stage_settings {
         if (!here.count(f)) return "other shape files (" + f + " is no longer in DIR)";
       return "other shape files";
     }
+    if (key == "truth") return "other ground truth (STEM.seg / STEM.vts / STEM.pid files, option --truth)";
+    std::string flag = "--" + key;  // the option's name: the key with dashes
+    std::replace(flag.begin(), flag.end(), '_', '-');
     const std::string was = old ? old->dump() : std::string("(not recorded)");
-    if (key == "template") return "--template " + was + "; this run asks for " + now.dump() + " (option --template)";
-    if (key == "learn_subset") return "--learn-subset " + was + "; this run asks for " + now.dump() + " (option --learn-subset)";
-    if (key == "mode") return "--mode " + was + "; this run asks for " + now.dump() + " (option --mode)";
-    return "other ground truth (STEM.seg / STEM.vts / STEM.pid files, option --truth)";
+    return flag + " " + was + "; this run asks for " + now.dump() + " (option " + flag + ")";
   }
   std::map<std::string, ojson> wanted_;
 };
 
 /// The command line of `shapestruct analyze`.
 struct analyze_command_line {
-  std::string input, out, truth, mode = "auto", template_file;
+  std::string input, out, truth, mode = "auto";
   long long threads = 0;
-  long long learn_subset = 200;
+  long long up = 1;
+  cli::templates_cli_options templates;  // the templates stage's options analyze passes on
+  cli::fuzzy_cli_options fuzzy;          // the fuzzy stage's
   bool quiet = false;
 };
 
@@ -1006,9 +1018,8 @@ int run_analyze(const analyze_command_line& c) {
   s.threads = c.threads;
   s.mode = c.mode;
   const std::string& truth = c.truth;
-  cli::templates_cli_options topt;
-  topt.template_file = c.template_file;
-  topt.learn_subset = c.learn_subset;
+  cli::templates_cli_options topt = c.templates;
+  topt.up = c.up;
   s.quiet = c.quiet;
   s.input = c.input;
   s.share = cli::run_share();
@@ -1018,7 +1029,8 @@ int run_analyze(const analyze_command_line& c) {
   if (s.truth_given && !fs::is_directory(s.truth)) throw cli::usage_error("--truth " + truth + " is not a folder");
   topt.threads = s.threads;
   topt.share = s.share;
-  cli::fuzzy_cli_options fopt;
+  cli::fuzzy_cli_options fopt = c.fuzzy;
+  fopt.up = c.up;
   fopt.mode = s.mode;
   fopt.threads = s.threads;
   fopt.quiet = s.quiet;
@@ -1026,7 +1038,9 @@ int run_analyze(const analyze_command_line& c) {
   fopt.share = s.share;
   const auto all_files = cli::shape_files_in(s.input);
   if (all_files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + c.input);
-  const stage_settings settings(s, all_files, c.template_file, c.learn_subset);
+  if (topt.no_learn && topt.template_file.empty())
+    throw cli::usage_error("--no-learn labels with the given templates as they are: it needs --template T.json");
+  const stage_settings settings(s, all_files, topt, fopt);
   if (fs::is_directory(s.out)) settings.check(s.out);  // before anything in OUT is touched
   fs::create_directories(s.out);
   // Temporaries of writes cut short by an interruption (never listed, never read): cleared before any rank writes.
@@ -1216,14 +1230,11 @@ cli::command_fn setup_analyze(CLI::App& app) {
       ->type_name("auto|intrinsic|extrinsic")
       ->check(cli::one_of({"auto", "intrinsic", "extrinsic"}));
   app.add_option("--truth", c->truth, "ground-truth labels STEM.seg (one 0-based label per face) in DIR")->type_name("DIR");
-  app.add_option("--template,-t", c->template_file,
-                 "passed to the templates stage (`shapestruct templates --help`): initial\n"
-                 "templates instead of the automatic ones")
-      ->type_name("T.json");
-  app.add_option("--learn-subset", c->learn_subset,
-                 "passed to the templates stage: shapes to learn from (default 200)")
-      ->type_name("S")
-      ->check(cli::at_least(1LL));
+  app.add_option("--up", c->up, "up axis of the collection (templates; fuzzy in extrinsic mode): 0 x, 1 y (default), 2 z")
+      ->type_name("0|1|2")
+      ->check(cli::in_range(0LL, 2LL));
+  cli::add_templates_run_options(app, c->templates, "templates stage: ");
+  cli::add_fuzzy_run_options(app, c->fuzzy, "fuzzy stage: ");
   app.add_flag("--quiet", c->quiet, "no progress display");
   app.footer(
       "Runs five stages on every shape file in DIR (.off .obj .ply .stl), each into its own folder of OUT:\n"

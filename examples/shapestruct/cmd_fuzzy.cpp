@@ -334,6 +334,22 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
   return report;
 }
 
+void add_fuzzy_run_options(CLI::App& app, fuzzy_cli_options& o, const std::string& prefix) {
+  app.add_option("--samples", o.samples, prefix + "farthest-point samples per shape (default 128)")
+      ->type_name("K")
+      ->check(at_least(3LL));
+  app.add_option("--edges-per-shape", o.edges_per_shape,
+                 prefix + "edges per shape of the initial alignment graph (default 5)")
+      ->type_name("M")
+      ->check(at_least(1LL));
+  app.add_option("--diffusion-time", o.diffusion_time, prefix + "time of the diffusion embedding (default 10)")
+      ->type_name("T")
+      ->check(at_least(0.0));
+  app.add_option("--dimensions", o.dimensions, prefix + "dimensions of the diffusion embedding (default 64)")
+      ->type_name("D")
+      ->check(at_least(1LL));
+}
+
 }  // namespace shapestruct::cli
 
 namespace {
@@ -348,22 +364,11 @@ cli::command_fn setup_fuzzy(CLI::App& app) {
                  "else extrinsic; in intrinsic mode a shape that is not is left out and named")
       ->type_name("extrinsic|intrinsic|auto")
       ->check(cli::one_of({"extrinsic", "intrinsic", "auto"}));
-  app.add_option("--samples", o.samples, "farthest-point samples per shape (default 128)")
-      ->type_name("K")
-      ->check(cli::at_least(3LL));
   app.add_option("--threads", o.threads, "worker threads, 0 = all cores (default)")->type_name("N")->check(cli::at_least(0LL));
-  app.add_option("--edges-per-shape", o.edges_per_shape, "edges per shape of the initial alignment graph (default 5)")
-      ->type_name("M")
-      ->check(cli::at_least(1LL));
   app.add_option("--up", o.up, "up axis of the collection (extrinsic mode): 0 x, 1 y (default), 2 z")
       ->type_name("0|1|2")
       ->check(cli::in_range(0LL, 2LL));
-  app.add_option("--diffusion-time", o.diffusion_time, "time of the diffusion embedding (default 10)")
-      ->type_name("T")
-      ->check(cli::at_least(0.0));
-  app.add_option("--dimensions", o.dimensions, "dimensions of the diffusion embedding (default 64)")
-      ->type_name("D")
-      ->check(cli::at_least(1LL));
+  cli::add_fuzzy_run_options(app, o, "");
   app.add_flag("--alignments-in-memory", o.alignments_in_memory,
                "keep every pairwise alignment's scores in memory instead of reading them\n"
                "back from OUT/pairs each round: a little faster, memory grows with the pairs;\n"

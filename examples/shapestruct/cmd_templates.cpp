@@ -104,6 +104,24 @@ templates_run_summary run_templates_folder(const std::vector<std::filesystem::pa
   return r;
 }
 
+
+void add_templates_run_options(CLI::App& app, templates_cli_options& o, const std::string& prefix) {
+  app.add_option("--template,-t", o.template_file,
+                 prefix + "initial template(s) (hand-authored or from an earlier run);\ndefault: automatic")
+      ->type_name("T.json")
+      ->check(CLI::ExistingFile.description(""));
+  app.add_flag("--no-learn", o.no_learn, prefix + "label with the --template templates as they are");
+  app.add_option("--learn-subset", o.learn_subset, prefix + "shapes held in memory for learning (default 200)")
+      ->type_name("S")
+      ->check(at_least(1LL));
+  app.add_option("--learn-best", o.learn_best,
+                 prefix + "automatic templates: learn from the B best candidates, keep the best\nset (default 2; chapter 10)")
+      ->type_name("B")
+      ->check(at_least(1LL));
+  app.add_option("--parts", o.parts, prefix + "parts of automatic templates (default 4)")->type_name("K")->check(at_least(1LL));
+  app.add_option("--points", o.points, prefix + "samples per shape (default 1500)")->type_name("P")->check(at_least(16LL));
+}
+
 }  // namespace shapestruct::cli
 
 namespace {
@@ -113,25 +131,13 @@ cli::command_fn setup_templates(CLI::App& app) {
   auto& o = c->options;
   app.add_option("DIR", c->input, "the input folder (its .off .obj .ply .stl files)")->required();
   app.add_option("-o,--output", c->out, "the output folder")->type_name("OUT")->required();
-  app.add_option("--template,-t", o.template_file,
-                 "initial template(s) (hand-authored or from an earlier run); default: automatic")
-      ->type_name("T.json");
   app.add_option("--threads", o.threads, "worker threads, 0 = all cores (default); results do not depend on N")
       ->type_name("N")
       ->check(cli::at_least(0LL));
-  app.add_option("--points", o.points, "samples per shape (default 1500)")->type_name("P")->check(cli::at_least(16LL));
-  app.add_option("--learn-subset", o.learn_subset, "shapes held in memory for learning (default 200)")
-      ->type_name("S")
-      ->check(cli::at_least(1LL));
   app.add_option("--up", o.up, "up axis of the collection: 0 x, 1 y (default), 2 z")
       ->type_name("0|1|2")
       ->check(cli::in_range(0LL, 2LL));
-  app.add_option("--parts", o.parts, "parts of automatic templates (default 4)")->type_name("K")->check(cli::at_least(1LL));
-  app.add_option("--learn-best", o.learn_best,
-                 "automatic mode: learn from the B best candidates, keep the best set\n(default 2; chapter 10)")
-      ->type_name("B")
-      ->check(cli::at_least(1LL));
-  app.add_flag("--no-learn", o.no_learn, "label with the given templates as they are");
+  cli::add_templates_run_options(app, o, "");
   app.add_flag("--no-ply", o.no_ply, "skip the visualisation outputs (ply/)");
   app.add_flag("--no-points", o.no_points, "skip the per-point outputs (STEM.points.txt)");
   app.add_flag("--quiet", c->quiet, "no progress display");

@@ -12,6 +12,10 @@
 #include "progress_display.hpp"
 #include "shapestruct/core/work_share.hpp"
 
+namespace CLI {
+class App;
+}  // namespace CLI
+
 namespace shapestruct::cli {
 
 /// The options of `shapestruct fuzzy` (defaults as documented in its --help; their ranges are checked when
@@ -34,6 +38,10 @@ struct fuzzy_cli_options {
   /// (exchanged through OUT/records and OUT/pairs); every rank computes the rest alike; rank 0 writes.
   work_share share{};
 };
+
+/// Adds the options that shape a fuzzy run's graph and embedding (--samples, --edges-per-shape, --diffusion-time,
+/// --dimensions) to `app`, each help text after `prefix`: `fuzzy` and `analyze` declare them once, alike.
+void add_fuzzy_run_options(CLI::App& app, fuzzy_cli_options& o, const std::string& prefix);
 
 /// What a run reports back.
 struct fuzzy_run_report {

@@ -11,6 +11,10 @@
 
 #include "shapestruct/core/work_share.hpp"
 
+namespace CLI {
+class App;
+}  // namespace CLI
+
 namespace shapestruct::cli {
 
 /// The options of `shapestruct templates` (defaults as documented in its --help; their ranges are checked
@@ -42,6 +46,10 @@ struct templates_run_summary {
   std::vector<std::size_t> cluster_sizes;
   std::size_t processed = 0, skipped = 0, failed = 0;
 };
+
+/// Adds the options that shape a templates run (--template, --no-learn, --learn-subset, --learn-best, --parts,
+/// --points) to `app`, each help text after `prefix`: `templates` and `analyze` declare them once, alike.
+void add_templates_run_options(CLI::App& app, templates_cli_options& o, const std::string& prefix);
 
 /// The library's list_shape_files(dir): the .off/.obj/.ply/.stl files directly in dir, sorted.
 std::vector<std::filesystem::path> shape_files_in(const std::filesystem::path& dir);

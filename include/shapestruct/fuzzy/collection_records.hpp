@@ -41,7 +41,9 @@ struct collection_records {
 struct collection_records_options {
   shape_record_options record{};
   spherical_harmonic_descriptor_options descriptor{};
-  std::filesystem::path cache_folder{};  ///< records are cached here as NAME.rec ("" = not cached)
+  /// Records are cached here as NAME.rec ("" = not cached). Keyed by file name only: the record of a file edited
+  /// since is reused, so clear it (`shapestruct fuzzy` guards this with its cache.json of file fingerprints).
+  std::filesystem::path cache_folder{};
   int threads = 0;                       ///< 0 = all cores; the result does not depend on it
   std::function<void(std::size_t, std::size_t)> on_progress{};  ///< (done, total) of this part's files
   /// Several processes: each makes the records of its own files, then reads the others' from the cache folder
