@@ -348,6 +348,10 @@ void add_fuzzy_run_options(CLI::App& app, fuzzy_cli_options& o, const std::strin
   app.add_option("--dimensions", o.dimensions, prefix + "dimensions of the diffusion embedding (default 64)")
       ->type_name("D")
       ->check(at_least(1LL));
+  app.add_flag("--alignments-in-memory", o.alignments_in_memory,
+               prefix + "keep every pairwise alignment's scores in memory instead of reading\n"
+                        "them back from the pair cache each round: a little faster, memory grows\n"
+                        "with the pairs; the results are the same");
 }
 
 }  // namespace shapestruct::cli
@@ -369,10 +373,6 @@ cli::command_fn setup_fuzzy(CLI::App& app) {
       ->type_name("0|1|2")
       ->check(cli::in_range(0LL, 2LL));
   cli::add_fuzzy_run_options(app, o, "");
-  app.add_flag("--alignments-in-memory", o.alignments_in_memory,
-               "keep every pairwise alignment's scores in memory instead of reading them\n"
-               "back from OUT/pairs each round: a little faster, memory grows with the pairs;\n"
-               "the results are the same");
   app.add_flag("--quiet", o.quiet, "no progress display");
   app.footer(
       "Fuzzy correspondences of every shape file (.off .obj .ply .stl) in DIR (chapter 4): K farthest-point samples\n"

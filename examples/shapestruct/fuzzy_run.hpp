@@ -39,8 +39,9 @@ struct fuzzy_cli_options {
   work_share share{};
 };
 
-/// Adds the options that shape a fuzzy run's graph and embedding (--samples, --edges-per-shape, --diffusion-time,
-/// --dimensions) to `app`, each help text after `prefix`: `fuzzy` and `analyze` declare them once, alike.
+/// Adds the options of a fuzzy run's graph and embedding (--samples, --edges-per-shape, --diffusion-time,
+/// --dimensions, --alignments-in-memory) to `app`, each help text after `prefix`: `fuzzy` and `analyze` declare
+/// them once, alike.
 void add_fuzzy_run_options(CLI::App& app, fuzzy_cli_options& o, const std::string& prefix);
 
 /// What a run reports back.

@@ -278,7 +278,7 @@ TEST_CASE("fuzzy collection: alignments read back from the cache folder give wha
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("alignment store: reading back keeps only summaries; a cache file lost during the run is an io_error") {
+TEST_CASE("alignment store: reading back keeps only summaries, and a cache file lost during the run is an io_error") {
   const int K = 6;
   const auto records = planted_records(4, K);
   const planted_aligner aligner{K, {1, 2}};
