@@ -64,40 +64,6 @@ std::string fmt(double x, int prec = 4) {
   return b;
 }
 
-struct features_and_symmetry {
-  std::vector<index_t> vertices;
-  std::vector<index_t> perm;
-  std::vector<std::string> names;  ///< names[k] of feature point k (cross-set lists only)
-};
-
-/// Feature points of a mesh and the symmetry permutation of its class.
-features_and_symmetry load_features(const fs::path& data, const bim_mesh_ref& m, bool with_names = false) {
-  features_and_symmetry out;
-  if (with_names) {
-    const fs::path p = m.dataset == "SCAPE"   ? data / "SCAPE/Corrs/1.info"
-                       : m.dataset == "TOSCA" ? data / "TOSCA/Corrs" / (m.cls + ".info")
-                                              : data / "watertight_shrec07/Corrs" / ("c" + m.cls + ".info");
-    out.names = read_bim_feature_names(p.string());
-  }
-  if (m.dataset == "SCAPE") {
-    out.vertices = read_bim_feature_vertices((data / "SCAPE/Corrs/1.pid").string());
-    out.perm = read_bim_symmetry((data / "SCAPE/Corrs/1.sym.info").string(), static_cast<index_t>(out.vertices.size()));
-  } else if (m.dataset == "TOSCA") {
-    out.vertices = read_bim_feature_vertices((data / "TOSCA/Corrs" / (m.cls + ".pid")).string());
-    out.perm = read_bim_symmetry((data / "TOSCA/Corrs" / (m.cls + ".sym.info")).string(),
-                                 static_cast<index_t>(out.vertices.size()));
-  } else {
-    out.vertices = read_bim_feature_vertices((data / "watertight_shrec07/Corrs" / (m.global_id() + ".vts")).string());
-    const fs::path sym = data / "watertight_shrec07/Corrs" / (m.cls + ".sym.info");
-    if (fs::exists(sym)) out.perm = read_bim_symmetry(sym.string(), static_cast<index_t>(out.vertices.size()));
-    else {
-      out.perm.resize(out.vertices.size());
-      for (std::size_t i = 0; i < out.perm.size(); ++i) out.perm[i] = static_cast<index_t>(i);
-    }
-  }
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -265,22 +231,22 @@ int main(int argc, char** argv) {
           src_pts.push_back(orig);
           truth.push_back(orig);
         }
-        const auto fb = load_features(data, pr.target);
+        const auto fb = read_bim_feature_points(data, pr.target);
         std::vector<index_t> feat_internal, truth_internal;
         for (index_t f : fb.vertices) feat_internal.push_back(sb.internal_vertex(f));
         for (index_t t : truth) truth_internal.push_back(sb.internal_vertex(t));
         const auto sym_internal = symmetric_vertices(sb.geodesics(), std::span<const index_t>(feat_internal),
-                                                     std::span<const index_t>(fb.perm),
+                                                     std::span<const index_t>(fb.symmetry),
                                                      std::span<const index_t>(truth_internal), threads);
         for (index_t s : sym_internal) truth_sym.push_back(sb.original_vertex(s));
       } else if (info.cross) {
         // Across data sets the feature lists are matched by name: source point k -> the target point of the same
         // name; the symmetric truth is that target point's partner under the target class's symmetry.
-        const auto fa = load_features(data, pr.source, true);
-        const auto fb = load_features(data, pr.target, true);
+        const auto fa = read_bim_feature_points(data, pr.source, true);
+        const auto fb = read_bim_feature_points(data, pr.target, true);
         // SCAPE's single 1.pid holds template vertex ids: it does not apply to the meshes that are not
         // template-aligned (mesh051, mesh071, mesh073 have other vertex counts), and no feature id may be out of range.
-        const auto check = [&](const bim_mesh_ref& m, const triangle_mesh<double>& M, const features_and_symmetry& f) {
+        const auto check = [&](const bim_mesh_ref& m, const triangle_mesh<double>& M, const bim_feature_points& f) {
           if (m.dataset == "SCAPE") {
             const index_t template_rows = load(bim_mesh_ref{"SCAPE", m.cls, "0"}).V.rows();
             if (M.V.rows() != template_rows)
@@ -294,25 +260,17 @@ int main(int argc, char** argv) {
         };
         check(pr.source, A, fa);
         check(pr.target, B, fb);
-        std::map<std::string, std::size_t> by_name;
-        for (std::size_t j = 0; j < fb.names.size() && j < fb.vertices.size(); ++j)
-          if (!fb.names[j].empty()) by_name.emplace(fb.names[j], j);
-        for (std::size_t k = 0; k < fa.names.size() && k < fa.vertices.size(); ++k) {
-          const auto it = fa.names[k].empty() ? by_name.end() : by_name.find(fa.names[k]);
-          if (it == by_name.end()) continue;
-          src_pts.push_back(fa.vertices[k]);
-          truth.push_back(fb.vertices[it->second]);
-          truth_sym.push_back(fb.vertices[static_cast<std::size_t>(fb.perm[it->second])]);
-        }
+        const auto named = match_bim_features_by_name(fa, fb);
+        src_pts = named.source, truth = named.target, truth_sym = named.target_symmetric;
         if (src_pts.empty()) throw std::runtime_error("no feature point names in common");
       } else {
-        const auto fa = load_features(data, pr.source);
-        const auto fb = load_features(data, pr.target);
+        const auto fa = read_bim_feature_points(data, pr.source);
+        const auto fb = read_bim_feature_points(data, pr.target);
         const std::size_t n = std::min(fa.vertices.size(), fb.vertices.size());
         for (std::size_t k = 0; k < n; ++k) {
           src_pts.push_back(fa.vertices[k]);
           truth.push_back(fb.vertices[k]);
-          truth_sym.push_back(fb.vertices[static_cast<std::size_t>(fb.perm[k])]);
+          truth_sym.push_back(fb.vertices[static_cast<std::size_t>(fb.symmetry[k])]);
         }
       }
       // Scores on the prepared (unit-area) target, d / sqrt(area), the area taken from the mesh itself.

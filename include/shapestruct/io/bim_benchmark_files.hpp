@@ -5,6 +5,7 @@
 
 #include <cctype>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <numeric>
@@ -179,6 +180,69 @@ inline std::vector<index_t> read_bim_symmetry(const std::string& path, index_t n
       perm[static_cast<std::size_t>(orbit[k])] = orbit[(k + 1) % orbit.size()];
   }
   return perm;
+}
+
+/// The feature points of one benchmark mesh: their vertices, the symmetry permutation of its class, and their
+/// names when asked for (the cross-set lists match feature points by name).
+struct bim_feature_points {
+  std::vector<index_t> vertices;
+  std::vector<index_t> symmetry;   ///< symmetry[k]: the feature point k maps to under the class's symmetry
+  std::vector<std::string> names;  ///< names[k] of feature point k; empty unless asked for
+};
+
+/// Reads the feature points of mesh `m` under the data root: SCAPE/Corrs/1.pid, 1.sym.info, 1.info (SCAPE's
+/// ids are the template's vertices), TOSCA/Corrs/<class>.pid, .sym.info, .info, and for SHREC'07
+/// watertight_shrec07/Corrs/<file number>.vts, <class>.sym.info (the identity when the class has none),
+/// c<class>.info.
+/// \throws io_error as the readers above.
+inline bim_feature_points read_bim_feature_points(const std::filesystem::path& data, const bim_mesh_ref& m,
+                                                  bool with_names = false) {
+  bim_feature_points out;
+  std::filesystem::path pid, sym, info;
+  if (m.dataset == "SCAPE") {
+    pid = data / "SCAPE/Corrs/1.pid", sym = data / "SCAPE/Corrs/1.sym.info", info = data / "SCAPE/Corrs/1.info";
+  } else if (m.dataset == "TOSCA") {
+    const std::filesystem::path dir = data / "TOSCA/Corrs";
+    pid = dir / (m.cls + ".pid"), sym = dir / (m.cls + ".sym.info"), info = dir / (m.cls + ".info");
+  } else {
+    const std::filesystem::path dir = data / "watertight_shrec07/Corrs";
+    pid = dir / (m.global_id() + ".vts"), sym = dir / (m.cls + ".sym.info"), info = dir / ("c" + m.cls + ".info");
+  }
+  out.vertices = read_bim_feature_vertices(pid.string());
+  const auto n = static_cast<index_t>(out.vertices.size());
+  if (m.dataset != "SHREC" || std::filesystem::exists(sym)) {
+    out.symmetry = read_bim_symmetry(sym.string(), n);
+  } else {
+    out.symmetry.resize(out.vertices.size());
+    std::iota(out.symmetry.begin(), out.symmetry.end(), index_t(0));
+  }
+  if (with_names) out.names = read_bim_feature_names(info.string());
+  return out;
+}
+
+/// Feature points of a source and a target mesh paired by name, as the cross-set lists are scored: source
+/// vertex, the target vertex of the same name, and that point's partner under the target class's symmetry.
+struct bim_named_features {
+  std::vector<index_t> source, target, target_symmetric;
+};
+
+/// Pairs the named feature points of `a` and `b` (read with names); points without a name or a partner of the
+/// same name are left out, so the result may be empty.
+/// Complexity: O((|a| + |b|) log |b|).
+[[nodiscard]] inline bim_named_features match_bim_features_by_name(const bim_feature_points& a,
+                                                                   const bim_feature_points& b) {
+  std::map<std::string, std::size_t> by_name;
+  for (std::size_t j = 0; j < b.names.size() && j < b.vertices.size(); ++j)
+    if (!b.names[j].empty()) by_name.emplace(b.names[j], j);
+  bim_named_features out;
+  for (std::size_t k = 0; k < a.names.size() && k < a.vertices.size(); ++k) {
+    const auto it = a.names[k].empty() ? by_name.end() : by_name.find(a.names[k]);
+    if (it == by_name.end()) continue;
+    out.source.push_back(a.vertices[k]);
+    out.target.push_back(b.vertices[it->second]);
+    out.target_symmetric.push_back(b.vertices[static_cast<std::size_t>(b.symmetry[it->second])]);
+  }
+  return out;
 }
 
 /// One block (Stats, StatsWithFlip, ...) of a BenchResult file.
