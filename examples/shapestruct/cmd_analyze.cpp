@@ -1111,6 +1111,10 @@ int run_analyze(const analyze_command_line& c) {
     };
     hooks.problem = [&](const std::string& f, const std::string& m) { if (leader) std::fprintf(stderr, "\ranalyze: templates: skipped %s: %s\n", f.c_str(), m.c_str()); };
     hooks.progress = [&](std::size_t d, std::size_t t) { bar.update("labeling", d, t); };
+    hooks.learning_round = [&](int round, int rounds) {  // time left: an upper bound, learning may converge early
+      ticker.stop();
+      bar.update("learning rounds (at most)", static_cast<std::size_t>(round), static_cast<std::size_t>(rounds));
+    };
     const auto sum = cli::run_templates_folder(usable, s.out / "templates", topt, hooks);
     ticker.stop();
     bar.finish();

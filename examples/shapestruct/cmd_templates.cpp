@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // shapestruct templates: part-based templates for a folder of shapes (dissertation chapter 5).
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -40,6 +42,12 @@ int run_templates(const templates_command_line& c) {
   };
   opt.problem = [&](const std::string& f, const std::string& m) {
     std::cerr << "\rtemplates: skipped " << f << ": " << m << "\n";
+  };
+  opt.learning_round = [&](int round, int rounds) {
+    if (quiet) return;
+    const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - phase_start).count();
+    std::cerr << "templates: learning round " << round << " of at most " << rounds << " done, " << std::lround(spent)
+              << " s spent, at most " << std::lround(spent / round * (rounds - round)) << " s left\n";
   };
   opt.progress = [&](std::size_t done, std::size_t total) {
     if (quiet) return;
@@ -93,6 +101,13 @@ templates_run_summary run_templates_folder(const std::vector<std::filesystem::pa
   opt.phase = hooks.phase;
   opt.problem = hooks.problem;
   opt.progress = hooks.progress;
+  if (hooks.learning_round && opt.run_learning) {
+    // Automatic initialisation learns from learn_best candidates one after the other: rounds count across them.
+    const int most = opt.learn.N_iter * (templates.empty() ? std::max(1, opt.init.learn_best) : 1);
+    opt.learn.progress = [&hooks, most, done = std::make_shared<int>(0)](int, std::size_t, std::size_t) {
+      hooks.learning_round(++*done, most);  // shared: the options may be copied per candidate
+    };
+  }
   opt.share = o.share;
   const auto sum = run_template_collection(files, out, templates, opt);
   templates_run_summary r;

@@ -38,6 +38,8 @@ struct templates_hooks {
   std::function<void(std::size_t, std::size_t)> progress;
   std::function<void(const std::string&, const std::string&)> problem;
   std::function<void(const std::string&)> phase;
+  /// After each learning round: (rounds done, most rounds); learning may converge before the last one.
+  std::function<void(int, int)> learning_round;
 };
 
 /// What a run reports back (collection_run_summary without the templates themselves).

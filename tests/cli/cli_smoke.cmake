@@ -152,6 +152,11 @@ run_cli(2 out templates ${WORK}/chairs -o ${WORK}/tpl --learn-best 0)
 if(NOT out MATCHES "--learn-best: must be >= 1, got 0")
   message(FATAL_ERROR "templates --learn-best 0 does not name the option:\n${out}")
 endif()
+# templates reports each learning round with the time left (an upper bound: learning may converge early).
+run_cli(0 out templates ${WORK}/chairs -o ${WORK}/tpl --threads 2)
+if(NOT out MATCHES "learning round 1 of at most [0-9]+ done, [0-9]+ s spent, at most [0-9]+ s left")
+  message(FATAL_ERROR "templates reports no learning rounds:\n${out}")
+endif()
 
 # fuzzy: a small extrinsic collection end to end, a resumed run that aligns nothing again, a map out of it, and
 # bad input: an empty and a non-finite shape are reported by file and skipped, never fatal for the rest.
