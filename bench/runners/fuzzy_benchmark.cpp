@@ -314,6 +314,55 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
   return 0;
 }
 
+/// Scores one benchmark pair of an intrinsic collection: the pairwise blended map, the consistent blended map and
+/// the best fuzzy correspondence at the source vertices `points` against their true images on the target B (raw
+/// and under the symmetry), and the stored original from `stored` when it exists; one csv line per method.
+void score_list_pair(intrinsic_aligner& aligner, const fuzzy_collection_result& r,
+                     const std::vector<shape_record>& records, index_t ia, index_t ib, const triangle_mesh<double>& B,
+                     const dijkstra_geodesics<double>& geo_b, const std::vector<index_t>& points,
+                     const std::vector<index_t>& truth, const std::vector<index_t>& truth_sym, const fs::path& stored,
+                     int threads, std::map<std::string, method_errors>& total, std::ostream& csv) {
+  const std::string& a = records[std::size_t(ia)].name;
+  const std::string& b = records[std::size_t(ib)].name;
+  auto score = [&](const std::string& method, const std::vector<index_t>& map_of_vertex) {
+    std::vector<index_t> pred;
+    for (const index_t v : points) pred.push_back(map_of_vertex[std::size_t(v)]);
+    const auto e_raw = benchmark_geodesic_errors<double>(B.V, B.F, geo_b, std::span<const index_t>(pred),
+                                                          std::span<const index_t>(truth), threads);
+    const auto e_sym = benchmark_geodesic_errors<double>(B.V, B.F, geo_b, std::span<const index_t>(pred),
+                                                          std::span<const index_t>(truth_sym), threads);
+    total[method].add(e_raw, e_sym);
+    csv << a << "," << b << "," << method << "," << fmt(mean_of(e_raw), 4) << "," << fmt(within(e_raw, 0.25), 3) << ","
+        << fmt(std::min(mean_of(e_raw), mean_of(e_sym)), 4) << "," << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "\n";
+  };
+  const blended_match_result<double> pairwise = aligner.match(ia, ib);
+  const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent);
+  score("pairwise", pairwise.map.nearest);
+  score("consistent_blended", cb.map.nearest);
+  score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
+  if (fs::exists(stored)) {
+    const auto blocks = read_bim_result(stored.string());
+    if (blocks.count("Stats")) {
+      const auto& e = blocks.at("Stats").per_sample_errors;
+      total["stored_original"].add(e, blocks.count("StatsWithFlip") ? blocks.at("StatsWithFlip").per_sample_errors : e);
+    }
+  }
+}
+
+/// The summary table of every method (and one line each on stdout).
+void write_method_table(std::ostream& summary, const std::map<std::string, method_errors>& total) {
+  summary << "| method | within 0.05 | within 0.10 | within 0.25 | mean | with flips: within 0.25 | mean | flipped pairs |\n"
+             "|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [m, e] : total) {
+    summary << "| " << m << " | " << fmt(within(e.raw, 0.05)) << " | " << fmt(within(e.raw, 0.10)) << " | "
+            << fmt(within(e.raw, 0.25)) << " | " << fmt(mean_of(e.raw), 4) << " | " << fmt(within(e.flip, 0.25)) << " | "
+            << fmt(mean_of(e.flip), 4) << " | " << e.flipped_pairs << " of " << e.pairs << " |\n";
+    std::cout << m << ": within 0.05 " << fmt(within(e.raw, 0.05)) << ", 0.25 raw " << fmt(within(e.raw, 0.25))
+              << ", flips " << fmt(within(e.flip, 0.25)) << ", mean " << fmt(mean_of(e.raw), 4) << ", flipped pairs "
+              << e.flipped_pairs << " of " << e.pairs << "\n";
+  }
+}
+
 // ---------------------------------------------------------------------------------------------- SCAPE
 int run_scape(const fs::path& data, const fs::path& out_dir, int threads) {
   const auto pairs = read_bim_query((data / "Results" / "Corr_Scape.query").string());
@@ -364,45 +413,16 @@ int run_scape(const fs::path& data, const fs::path& out_dir, int threads) {
     const std::vector<index_t>& truth = fps.indices;  // same vertex id = same point
     const auto truth_sym = symmetric_vertices(geo_b, std::span<const index_t>(feats), std::span<const index_t>(perm),
                                               std::span<const index_t>(truth), threads);
-    auto score = [&](const std::string& method, const std::vector<index_t>& map_of_vertex) {
-      std::vector<index_t> pred;
-      for (const index_t v : truth) pred.push_back(map_of_vertex[std::size_t(v)]);
-      const auto e_raw = benchmark_geodesic_errors<double>(B.V, B.F, geo_b, std::span<const index_t>(pred),
-                                                            std::span<const index_t>(truth), threads);
-      const auto e_sym = benchmark_geodesic_errors<double>(B.V, B.F, geo_b, std::span<const index_t>(pred),
-                                                            std::span<const index_t>(truth_sym), threads);
-      total[method].add(e_raw, e_sym);
-      csv << a << "," << b << "," << method << "," << fmt(mean_of(e_raw), 4) << "," << fmt(within(e_raw, 0.25), 3) << ","
-          << fmt(std::min(mean_of(e_raw), mean_of(e_sym)), 4) << "," << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "\n";
-    };
-    const blended_match_result<double> pairwise = aligner.match(ia, ib);
-    const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent);
-    score("pairwise", pairwise.map.nearest);
-    score("consistent_blended", cb.map.nearest);
-    score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
-    const fs::path st = data / "Results/Results_Corr_Scape" / ("BenchResult_BlendedMap_" + a + "_to_" + b + ".txt");
-    if (fs::exists(st)) {
-      const auto blocks = read_bim_result(st.string());
-      if (blocks.count("Stats")) {
-        const auto& e = blocks.at("Stats").per_sample_errors;
-        total["stored_original"].add(e, blocks.count("StatsWithFlip") ? blocks.at("StatsWithFlip").per_sample_errors : e);
-      }
-    }
+    score_list_pair(aligner, r, records, ia, ib, B, geo_b, truth, truth, truth_sym,
+                    data / "Results/Results_Corr_Scape" / ("BenchResult_BlendedMap_" + a + "_to_" + b + ".txt"), threads,
+                    total, csv);
   }
   std::ofstream summary(out_dir / "summary.md", std::ios::app);
   summary << "\n## SCAPE, the benchmark's 71 meshes as one intrinsic collection (run_fuzzy_benchmark --set scape)\n\n"
           << records.size() << " shapes, pairs aligned " << r.pairs_aligned << " of " << all << ", records "
           << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1) << " s, evaluation " << fmt(seconds_since(t2), 1)
-          << " s\n\n| method | within 0.05 | within 0.10 | within 0.25 | mean | with flips: within 0.25 | mean | flipped pairs |\n"
-             "|---|---|---|---|---|---|---|---|\n";
-  for (const auto& [m, e] : total) {
-    summary << "| " << m << " | " << fmt(within(e.raw, 0.05)) << " | " << fmt(within(e.raw, 0.10)) << " | "
-            << fmt(within(e.raw, 0.25)) << " | " << fmt(mean_of(e.raw), 4) << " | " << fmt(within(e.flip, 0.25)) << " | "
-            << fmt(mean_of(e.flip), 4) << " | " << e.flipped_pairs << " of " << e.pairs << " |\n";
-    std::cout << m << ": within 0.05 " << fmt(within(e.raw, 0.05)) << ", 0.25 raw " << fmt(within(e.raw, 0.25))
-              << ", flips " << fmt(within(e.flip, 0.25)) << ", mean " << fmt(mean_of(e.raw), 4) << ", flipped pairs "
-              << e.flipped_pairs << " of " << e.pairs << "\n";
-  }
+          << " s\n\n";
+  write_method_table(summary, total);
   return 0;
 }
 
@@ -514,30 +534,9 @@ int run_cross(const std::string& set, const fs::path& data, const fs::path& out_
     const index_t ia = index_of[a], ib = index_of[b];
     const auto B = read_mesh(kept[std::size_t(ib)]).mesh;
     const dijkstra_geodesics<double> geo_b(B.V, B.F);
-    auto score = [&](const std::string& method, const std::vector<index_t>& map_of_vertex) {
-      std::vector<index_t> pred;
-      for (const index_t v : src) pred.push_back(map_of_vertex[std::size_t(v)]);
-      const auto e_raw = benchmark_geodesic_errors<double>(B.V, B.F, geo_b, std::span<const index_t>(pred),
-                                                            std::span<const index_t>(truth), threads);
-      const auto e_sym = benchmark_geodesic_errors<double>(B.V, B.F, geo_b, std::span<const index_t>(pred),
-                                                            std::span<const index_t>(truth_sym), threads);
-      total[method].add(e_raw, e_sym);
-      csv << a << "," << b << "," << method << "," << fmt(mean_of(e_raw), 4) << "," << fmt(within(e_raw, 0.25), 3) << ","
-          << fmt(std::min(mean_of(e_raw), mean_of(e_sym)), 4) << "," << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "\n";
-    };
-    const blended_match_result<double> pairwise = aligner.match(ia, ib);
-    const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent);
-    score("pairwise", pairwise.map.nearest);
-    score("consistent_blended", cb.map.nearest);
-    score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
-    const fs::path st = data / "Results" / stored_dir / ("BenchResult_BlendedMap_" + a + "_to_" + b + ".txt");
-    if (fs::exists(st)) {
-      const auto blocks = read_bim_result(st.string());
-      if (blocks.count("Stats")) {
-        const auto& e = blocks.at("Stats").per_sample_errors;
-        total["stored_original"].add(e, blocks.count("StatsWithFlip") ? blocks.at("StatsWithFlip").per_sample_errors : e);
-      }
-    }
+    score_list_pair(aligner, r, records, ia, ib, B, geo_b, src, truth, truth_sym,
+                    data / "Results" / stored_dir / ("BenchResult_BlendedMap_" + a + "_to_" + b + ".txt"), threads,
+                    total, csv);
   }
   std::ofstream summary(out_dir / "summary.md", std::ios::app);
   summary << "\n## The " << set << " cross-set list (" << query << ") as one intrinsic collection (run_fuzzy_benchmark --set "
@@ -546,16 +545,8 @@ int run_cross(const std::string& set, const fs::path& data, const fs::path& out_
           << fmt(100.0 * double(r.pairs_aligned) / double(all), 1) << " %), " << not_scored << " of " << pairs.size()
           << " list pairs not scored, records " << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1)
           << " s, evaluation " << fmt(seconds_since(t2), 1)
-          << " s\n\n| method | within 0.05 | within 0.10 | within 0.25 | mean | with flips: within 0.25 | mean | flipped pairs |\n"
-             "|---|---|---|---|---|---|---|---|\n";
-  for (const auto& [m, e] : total) {
-    summary << "| " << m << " | " << fmt(within(e.raw, 0.05)) << " | " << fmt(within(e.raw, 0.10)) << " | "
-            << fmt(within(e.raw, 0.25)) << " | " << fmt(mean_of(e.raw), 4) << " | " << fmt(within(e.flip, 0.25)) << " | "
-            << fmt(mean_of(e.flip), 4) << " | " << e.flipped_pairs << " of " << e.pairs << " |\n";
-    std::cout << m << ": within 0.05 " << fmt(within(e.raw, 0.05)) << ", 0.25 raw " << fmt(within(e.raw, 0.25))
-              << ", flips " << fmt(within(e.flip, 0.25)) << ", mean " << fmt(mean_of(e.raw), 4) << ", flipped pairs "
-              << e.flipped_pairs << " of " << e.pairs << "\n";
-  }
+          << " s\n\n";
+  write_method_table(summary, total);
   write_curves(out_dir / (set + "_curves.dat"),
                {{"pairwise", &total["pairwise"].raw},
                 {"consistent_blended", &total["consistent_blended"].raw},
