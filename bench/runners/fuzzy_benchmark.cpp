@@ -314,6 +314,42 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
   return 0;
 }
 
+/// An intrinsic collection made of `files` and its fuzzy correspondences (records and pairs cached under
+/// out_dir/cache/<name>_records and <name>_pairs_sigma<width>).
+struct intrinsic_run {
+  collection_records col;  ///< the closed genus-0 shapes kept; the others in col.skipped
+  std::map<std::string, index_t> index_of;
+  double records_seconds = 0, fuzzy_seconds = 0;
+};
+
+/// Makes the records of `files`, keeps the closed genus-0 shapes, aligns them with the intrinsic aligner and
+/// computes the fuzzy correspondences; then calls `evaluate(run, aligner, result)`.
+template <class Evaluate>
+void run_intrinsic_collection(const std::vector<fs::path>& files, const std::string& name, const fs::path& out_dir,
+                              int threads, Evaluate&& evaluate) {
+  const auto t0 = clock_type::now();
+  intrinsic_run run;
+  collection_records_options ro;
+  ro.threads = threads;
+  ro.cache_folder = out_dir / "cache" / (name + "_records");
+  run.col = make_collection_records(files, ro);
+  keep_intrinsic_shapes(run.col);
+  for (const auto& s : run.col.skipped) std::cout << "  left out " << s.file.filename().string() << ": " << s.reason << "\n";
+  run.index_of = index_by_name(run.col.records);
+  run.records_seconds = seconds_since(t0);
+  const std::vector<fs::path>& kept = run.col.files;
+  intrinsic_aligner aligner(run.col.records, [&](index_t k) { return read_mesh(kept[std::size_t(k)]).mesh; },
+                            intrinsic_alignment_options{.sigma_fraction = knobs.intrinsic_sigma});
+  fuzzy_collection_options fo;
+  fo.threads = threads;
+  fo.cache_folder = out_dir / "cache" / (name + "_pairs_sigma" + fmt(knobs.intrinsic_sigma));
+  apply(fo);
+  const auto t1 = clock_type::now();
+  const auto r = compute_fuzzy_correspondences(run.col.records, aligner, fo);
+  run.fuzzy_seconds = seconds_since(t1);
+  evaluate(run, aligner, r);
+}
+
 /// Scores one benchmark pair of an intrinsic collection: the pairwise blended map, the consistent blended map and
 /// the best fuzzy correspondence at the source vertices `points` against their true images on the target B (raw
 /// and under the symmetry), and the stored original from `stored` when it exists; one csv line per method.
@@ -370,59 +406,46 @@ int run_scape(const fs::path& data, const fs::path& out_dir, int threads) {
   for (const auto& p : pairs) names.insert(p.source.relative_path()), names.insert(p.target.relative_path());
   std::vector<fs::path> files;
   for (const auto& n : names) files.push_back(data / n);
-  const auto t0 = clock_type::now();
-  collection_records_options ro;
-  ro.threads = threads;
-  ro.cache_folder = out_dir / "cache" / "scape_records";
-  auto col = make_collection_records(files, ro);
-  keep_intrinsic_shapes(col);
-  for (const auto& s : col.skipped) std::cout << "  left out " << s.file.filename().string() << ": " << s.reason << "\n";
-  const std::vector<shape_record>& records = col.records;
-  const std::vector<fs::path>& kept = col.files;
-  auto index_of = index_by_name(records);
-  const double t_records = seconds_since(t0);
-  intrinsic_aligner aligner(records, [&](index_t k) { return read_mesh(kept[std::size_t(k)]).mesh; },
-                            intrinsic_alignment_options{.sigma_fraction = knobs.intrinsic_sigma});
-  fuzzy_collection_options fo;
-  fo.threads = threads;
-  fo.cache_folder = out_dir / "cache" / ("scape_pairs_sigma" + fmt(knobs.intrinsic_sigma));
-  apply(fo);
-  const auto t1 = clock_type::now();
-  const auto r = compute_fuzzy_correspondences(records, aligner, fo);
-  const double t_fuzzy = seconds_since(t1);
-  const std::size_t all = records.size() * (records.size() - 1) / 2;
-  std::cout << "SCAPE: " << records.size() << " shapes, records " << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1)
-            << " s, pairs aligned " << r.pairs_aligned << " of " << all << " ("
-            << fmt(100.0 * double(r.pairs_aligned) / double(all), 1) << " %)\n";
-  print_log(r);
-  const auto feats = read_bim_feature_vertices((data / "SCAPE/Corrs/1.pid").string());
-  const auto perm = read_bim_symmetry((data / "SCAPE/Corrs/1.sym.info").string(), static_cast<index_t>(feats.size()));
-  std::map<std::string, method_errors> total;
-  std::ofstream csv(out_dir / "scape_pairs.csv");
-  csv << "source,target,method,mean,w025,mean_flip,flipped\n";
-  const auto t2 = clock_type::now();
-  for (const auto& pr : pairs) {
-    const std::string a = pr.source.name(), b = pr.target.name();
-    if (!index_of.count(a) || !index_of.count(b)) continue;
-    const index_t ia = index_of[a], ib = index_of[b];
-    const auto A = read_mesh(kept[std::size_t(ia)]).mesh;
-    const auto B = read_mesh(kept[std::size_t(ib)]).mesh;
-    if (A.V.rows() != B.V.rows()) continue;  // no dense truth
-    const dijkstra_geodesics<double> geo_a(A.V, A.F), geo_b(B.V, B.F);
-    const auto fps = geodesic_farthest_point_sampling(geo_a, std::min<index_t>(1024, A.V.rows()), 0);
-    const std::vector<index_t>& truth = fps.indices;  // same vertex id = same point
-    const auto truth_sym = symmetric_vertices(geo_b, std::span<const index_t>(feats), std::span<const index_t>(perm),
-                                              std::span<const index_t>(truth), threads);
-    score_list_pair(aligner, r, records, ia, ib, B, geo_b, truth, truth, truth_sym,
-                    data / "Results/Results_Corr_Scape" / ("BenchResult_BlendedMap_" + a + "_to_" + b + ".txt"), threads,
-                    total, csv);
-  }
-  std::ofstream summary(out_dir / "summary.md", std::ios::app);
-  summary << "\n## SCAPE, the benchmark's 71 meshes as one intrinsic collection (run_fuzzy_benchmark --set scape)\n\n"
-          << records.size() << " shapes, pairs aligned " << r.pairs_aligned << " of " << all << ", records "
-          << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1) << " s, evaluation " << fmt(seconds_since(t2), 1)
-          << " s\n\n";
-  write_method_table(summary, total);
+  run_intrinsic_collection(files, "scape", out_dir, threads, [&](const intrinsic_run& run, intrinsic_aligner& aligner,
+                                                               const fuzzy_collection_result& r) {
+    const std::vector<shape_record>& records = run.col.records;
+    const std::vector<fs::path>& kept = run.col.files;
+    auto index_of = run.index_of;
+    const double t_records = run.records_seconds, t_fuzzy = run.fuzzy_seconds;
+    const std::size_t all = records.size() * (records.size() - 1) / 2;
+    std::cout << "SCAPE: " << records.size() << " shapes, records " << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1)
+              << " s, pairs aligned " << r.pairs_aligned << " of " << all << " ("
+              << fmt(100.0 * double(r.pairs_aligned) / double(all), 1) << " %)\n";
+    print_log(r);
+    const auto feats = read_bim_feature_vertices((data / "SCAPE/Corrs/1.pid").string());
+    const auto perm = read_bim_symmetry((data / "SCAPE/Corrs/1.sym.info").string(), static_cast<index_t>(feats.size()));
+    std::map<std::string, method_errors> total;
+    std::ofstream csv(out_dir / "scape_pairs.csv");
+    csv << "source,target,method,mean,w025,mean_flip,flipped\n";
+    const auto t2 = clock_type::now();
+    for (const auto& pr : pairs) {
+      const std::string a = pr.source.name(), b = pr.target.name();
+      if (!index_of.count(a) || !index_of.count(b)) continue;
+      const index_t ia = index_of[a], ib = index_of[b];
+      const auto A = read_mesh(kept[std::size_t(ia)]).mesh;
+      const auto B = read_mesh(kept[std::size_t(ib)]).mesh;
+      if (A.V.rows() != B.V.rows()) continue;  // no dense truth
+      const dijkstra_geodesics<double> geo_a(A.V, A.F), geo_b(B.V, B.F);
+      const auto fps = geodesic_farthest_point_sampling(geo_a, std::min<index_t>(1024, A.V.rows()), 0);
+      const std::vector<index_t>& truth = fps.indices;  // same vertex id = same point
+      const auto truth_sym = symmetric_vertices(geo_b, std::span<const index_t>(feats), std::span<const index_t>(perm),
+                                                std::span<const index_t>(truth), threads);
+      score_list_pair(aligner, r, records, ia, ib, B, geo_b, truth, truth, truth_sym,
+                      data / "Results/Results_Corr_Scape" / ("BenchResult_BlendedMap_" + a + "_to_" + b + ".txt"), threads,
+                      total, csv);
+    }
+    std::ofstream summary(out_dir / "summary.md", std::ios::app);
+    summary << "\n## SCAPE, the benchmark's 71 meshes as one intrinsic collection (run_fuzzy_benchmark --set scape)\n\n"
+            << records.size() << " shapes, pairs aligned " << r.pairs_aligned << " of " << all << ", records "
+            << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1) << " s, evaluation " << fmt(seconds_since(t2), 1)
+            << " s\n\n";
+    write_method_table(summary, total);
+  });
   return 0;
 }
 
@@ -437,7 +460,6 @@ int run_cross(const std::string& set, const fs::path& data, const fs::path& out_
   // run_bim_benchmark repairs it (holes closed, the largest piece kept), written to the output folder, and the
   // collection is made of the repaired files. repaired_of[name][v]: the repaired vertex of input vertex v
   // (no_index when a repair dropped it).
-  const auto t0 = clock_type::now();
   const fs::path mesh_dir = out_dir / "cache" / (set + "_repaired");
   fs::create_directories(mesh_dir);
   sphere_repair_options repairs;
@@ -475,84 +497,72 @@ int run_cross(const std::string& set, const fs::path& data, const fs::path& out_
     if (ref.dataset == "SCAPE" && M.V.rows() != scape_template_rows) off_template.insert(name);
     files.push_back(file);
   }
-  collection_records_options ro;
-  ro.threads = threads;
-  ro.cache_folder = out_dir / "cache" / (set + "_records");
-  auto col = make_collection_records(files, ro);
-  keep_intrinsic_shapes(col);
-  for (const auto& s : col.skipped) std::cout << "  left out " << s.file.filename().string() << ": " << s.reason << "\n";
-  const std::vector<shape_record>& records = col.records;
-  const std::vector<fs::path>& kept = col.files;
-  auto index_of = index_by_name(records);
-  const double t_records = seconds_since(t0);
-  intrinsic_aligner aligner(records, [&](index_t k) { return read_mesh(kept[std::size_t(k)]).mesh; },
-                            intrinsic_alignment_options{.sigma_fraction = knobs.intrinsic_sigma});
-  fuzzy_collection_options fo;
-  fo.threads = threads;
-  fo.cache_folder = out_dir / "cache" / (set + "_pairs_sigma" + fmt(knobs.intrinsic_sigma));
-  apply(fo);
-  const auto t1 = clock_type::now();
-  const auto r = compute_fuzzy_correspondences(records, aligner, fo);
-  const double t_fuzzy = seconds_since(t1);
-  const std::size_t all = records.size() * (records.size() - 1) / 2;
-  std::cout << set << ": " << records.size() << " shapes (" << repaired_count << " repaired), records "
-            << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1) << " s, pairs aligned " << r.pairs_aligned
-            << " of " << all << " (" << fmt(100.0 * double(r.pairs_aligned) / double(all), 1) << " %)\n";
-  print_log(r);
-  std::map<std::string, method_errors> total;
-  std::ofstream csv(out_dir / (set + "_pairs.csv"));
-  csv << "source,target,method,mean,w025,mean_flip,flipped\n";
-  const auto t2 = clock_type::now();
-  int not_scored = 0;
-  for (const auto& pr : pairs) {
-    const std::string a = pr.source.name(), b = pr.target.name();
-    if (!index_of.count(a) || !index_of.count(b)) {
-      std::cout << "  pair " << a << " -> " << b << ": a mesh is not in the collection, not scored\n";
-      ++not_scored;
-      continue;
+  run_intrinsic_collection(files, set, out_dir, threads, [&](const intrinsic_run& run, intrinsic_aligner& aligner,
+                                                               const fuzzy_collection_result& r) {
+    const std::vector<shape_record>& records = run.col.records;
+    const std::vector<fs::path>& kept = run.col.files;
+    auto index_of = run.index_of;
+    const double t_records = run.records_seconds, t_fuzzy = run.fuzzy_seconds;
+    const std::size_t all = records.size() * (records.size() - 1) / 2;
+    std::cout << set << ": " << records.size() << " shapes (" << repaired_count << " repaired), records "
+              << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1) << " s, pairs aligned " << r.pairs_aligned
+              << " of " << all << " (" << fmt(100.0 * double(r.pairs_aligned) / double(all), 1) << " %)\n";
+    print_log(r);
+    std::map<std::string, method_errors> total;
+    std::ofstream csv(out_dir / (set + "_pairs.csv"));
+    csv << "source,target,method,mean,w025,mean_flip,flipped\n";
+    const auto t2 = clock_type::now();
+    int not_scored = 0;
+    for (const auto& pr : pairs) {
+      const std::string a = pr.source.name(), b = pr.target.name();
+      if (!index_of.count(a) || !index_of.count(b)) {
+        std::cout << "  pair " << a << " -> " << b << ": a mesh is not in the collection, not scored\n";
+        ++not_scored;
+        continue;
+      }
+      // Feature points paired by name, as run_bim_benchmark scores the list, in the repaired meshes' numbering.
+      const auto named = match_bim_features_by_name(read_bim_feature_points(data, pr.source, true),
+                                                    read_bim_feature_points(data, pr.target, true));
+      const auto& ra = repaired_of[a];
+      const auto& rb = repaired_of[b];
+      const auto repaired = [](const std::vector<index_t>& inverse, index_t v) {
+        return v >= 0 && std::size_t(v) < inverse.size() ? inverse[std::size_t(v)] : no_index;
+      };
+      std::vector<index_t> src, truth, truth_sym;
+      for (std::size_t k = 0; k < named.source.size(); ++k) {
+        const index_t s = repaired(ra, named.source[k]), t = repaired(rb, named.target[k]),
+                      ts = repaired(rb, named.target_symmetric[k]);
+        if (s == no_index || t == no_index) continue;
+        src.push_back(s), truth.push_back(t), truth_sym.push_back(ts == no_index ? t : ts);
+      }
+      if (src.empty() || off_template.count(a) || off_template.count(b)) {
+        std::cout << "  pair " << a << " -> " << b << ": no feature points in common, not scored\n";
+        ++not_scored;
+        continue;
+      }
+      const index_t ia = index_of[a], ib = index_of[b];
+      const auto B = read_mesh(kept[std::size_t(ib)]).mesh;
+      const dijkstra_geodesics<double> geo_b(B.V, B.F);
+      score_list_pair(aligner, r, records, ia, ib, B, geo_b, src, truth, truth_sym,
+                      data / "Results" / stored_dir / ("BenchResult_BlendedMap_" + a + "_to_" + b + ".txt"), threads,
+                      total, csv);
     }
-    // Feature points paired by name, as run_bim_benchmark scores the list, in the repaired meshes' numbering.
-    const auto named = match_bim_features_by_name(read_bim_feature_points(data, pr.source, true),
-                                                  read_bim_feature_points(data, pr.target, true));
-    const auto& ra = repaired_of[a];
-    const auto& rb = repaired_of[b];
-    const auto repaired = [](const std::vector<index_t>& inverse, index_t v) {
-      return v >= 0 && std::size_t(v) < inverse.size() ? inverse[std::size_t(v)] : no_index;
-    };
-    std::vector<index_t> src, truth, truth_sym;
-    for (std::size_t k = 0; k < named.source.size(); ++k) {
-      const index_t s = repaired(ra, named.source[k]), t = repaired(rb, named.target[k]),
-                    ts = repaired(rb, named.target_symmetric[k]);
-      if (s == no_index || t == no_index) continue;
-      src.push_back(s), truth.push_back(t), truth_sym.push_back(ts == no_index ? t : ts);
-    }
-    if (src.empty() || off_template.count(a) || off_template.count(b)) {
-      std::cout << "  pair " << a << " -> " << b << ": no feature points in common, not scored\n";
-      ++not_scored;
-      continue;
-    }
-    const index_t ia = index_of[a], ib = index_of[b];
-    const auto B = read_mesh(kept[std::size_t(ib)]).mesh;
-    const dijkstra_geodesics<double> geo_b(B.V, B.F);
-    score_list_pair(aligner, r, records, ia, ib, B, geo_b, src, truth, truth_sym,
-                    data / "Results" / stored_dir / ("BenchResult_BlendedMap_" + a + "_to_" + b + ".txt"), threads,
-                    total, csv);
-  }
-  std::ofstream summary(out_dir / "summary.md", std::ios::app);
-  summary << "\n## The " << set << " cross-set list (" << query << ") as one intrinsic collection (run_fuzzy_benchmark --set "
-          << set << ")\n\n"
-          << records.size() << " shapes, pairs aligned " << r.pairs_aligned << " of " << all << " ("
-          << fmt(100.0 * double(r.pairs_aligned) / double(all), 1) << " %), " << not_scored << " of " << pairs.size()
-          << " list pairs not scored, records " << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1)
-          << " s, evaluation " << fmt(seconds_since(t2), 1)
-          << " s\n\n";
-  write_method_table(summary, total);
-  write_curves(out_dir / (set + "_curves.dat"),
-               {{"pairwise", &total["pairwise"].raw},
-                {"consistent_blended", &total["consistent_blended"].raw},
-                {"best_fuzzy", &total["best_fuzzy"].raw},
-                {"stored_original", &total["stored_original"].raw}},
-               "The " + set + " cross-set list, fraction of feature points within geodesic error D (/ sqrt(area)), raw");
+    std::ofstream summary(out_dir / "summary.md", std::ios::app);
+    summary << "\n## The " << set << " cross-set list (" << query << ") as one intrinsic collection (run_fuzzy_benchmark --set "
+            << set << ")\n\n"
+            << records.size() << " shapes, pairs aligned " << r.pairs_aligned << " of " << all << " ("
+            << fmt(100.0 * double(r.pairs_aligned) / double(all), 1) << " %), " << not_scored << " of " << pairs.size()
+            << " list pairs not scored, records " << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1)
+            << " s, evaluation " << fmt(seconds_since(t2), 1)
+            << " s\n\n";
+    write_method_table(summary, total);
+    write_curves(out_dir / (set + "_curves.dat"),
+                 {{"pairwise", &total["pairwise"].raw},
+                  {"consistent_blended", &total["consistent_blended"].raw},
+                  {"best_fuzzy", &total["best_fuzzy"].raw},
+                  {"stored_original", &total["stored_original"].raw}},
+                 "The " + set + " cross-set list, fraction of feature points within geodesic error D (/ sqrt(area)), raw");
+  });
   return 0;
 }
 

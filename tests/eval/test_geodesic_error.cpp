@@ -126,3 +126,39 @@ TEST_CASE("read_bim_feature_names: names by index, trimmed and lower-cased, blan
   CHECK_THROWS_AS((void)read_bim_feature_names((dir / "missing.info").string()), io_error);
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("read_bim_feature_points and match_bim_features_by_name pair points across data sets by name") {
+  namespace fs = std::filesystem;
+  const auto root = fs::temp_directory_path() / "shapestruct_bim_points_test";
+  fs::remove_all(root);
+  fs::create_directories(root / "TOSCA/Corrs");
+  fs::create_directories(root / "watertight_shrec07/Corrs");
+  {
+    // A TOSCA class: 3 points, a left-right symmetry (1 2); a SHREC'07 class without a .sym.info.
+    std::ofstream(root / "TOSCA/Corrs/cat.pid") << "10 0 0 0\n20 0 0 0\n30 0 0 0\n";
+    std::ofstream(root / "TOSCA/Corrs/cat.sym.info") << "1 2\n";
+    std::ofstream(root / "TOSCA/Corrs/cat.info") << "0: Nose\n1: left paw\n2: right paw\n";
+    std::ofstream(root / "watertight_shrec07/Corrs/385.vts") << "5 0.1 0.2 0.3\n6 0 0 0\n7 0 0 0\n";
+    std::ofstream(root / "watertight_shrec07/Corrs/c20.info") << "0: right paw\n1: tail\n2: nose\n";
+  }
+  const bim_mesh_ref cat{"TOSCA", "cat", "0"}, fourleg{"SHREC", "20", "5"};  // SHREC'07 class 20, mesh 5 = 385
+  const auto a = read_bim_feature_points(root, cat, true);
+  const auto b = read_bim_feature_points(root, fourleg, true);
+  CHECK(a.vertices == std::vector<index_t>{10, 20, 30});
+  CHECK(a.symmetry == std::vector<index_t>{0, 2, 1});
+  CHECK(b.vertices == std::vector<index_t>{5, 6, 7});
+  CHECK(b.symmetry == std::vector<index_t>{0, 1, 2});  // no .sym.info: the identity
+  CHECK(read_bim_feature_points(root, cat).names.empty());
+  // cat -> 385: nose and right paw have partners, left paw and tail do not.
+  const auto ab = match_bim_features_by_name(a, b);
+  CHECK(ab.source == std::vector<index_t>{10, 30});
+  CHECK(ab.target == std::vector<index_t>{7, 5});
+  CHECK(ab.target_symmetric == std::vector<index_t>{7, 5});
+  // 385 -> cat: the symmetric truth of "right paw" is the cat's left paw.
+  const auto ba = match_bim_features_by_name(b, a);
+  CHECK(ba.source == std::vector<index_t>{5, 7});
+  CHECK(ba.target == std::vector<index_t>{30, 10});
+  CHECK(ba.target_symmetric == std::vector<index_t>{20, 10});
+  CHECK_THROWS_AS((void)read_bim_feature_points(root, bim_mesh_ref{"TOSCA", "dog", "0"}), io_error);
+  fs::remove_all(root);
+}
