@@ -489,7 +489,7 @@ int run_cross(const std::string& set, const fs::path& data, const fs::path& out_
       std::cout << "  " << ref.relative_path() << ": " << fixed.report.to_string() << "\n";
     }
     const fs::path file = mesh_dir / (name + ".ply");
-    if (!fs::exists(file)) write_mesh(file, fixed.mesh, mesh_write_options{.binary = true});
+    write_mesh(file, fixed.mesh, mesh_write_options{.binary = true});  // always: it must agree with repaired_of
     auto& inverse = repaired_of[name];
     inverse.assign(static_cast<std::size_t>(M.V.rows()), no_index);
     for (std::size_t v = fixed.original_vertex.size(); v-- > 0;)  // a split vertex's first copy keeps the input's id
