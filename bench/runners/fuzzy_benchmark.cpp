@@ -230,12 +230,10 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
       const auto B = read_mesh(kept[std::size_t(ib)]).mesh;
       const dijkstra_geodesics<double> geo(B.V, B.F);
       // Feature points of both shapes and the class symmetry (as run_bim_benchmark).
-      const auto fa = read_bim_feature_vertices((data / "watertight_shrec07/Corrs" / (a + ".vts")).string());
-      const auto fb = read_bim_feature_vertices((data / "watertight_shrec07/Corrs" / (b + ".vts")).string());
-      std::vector<index_t> perm(fb.size());
-      for (std::size_t k = 0; k < perm.size(); ++k) perm[k] = static_cast<index_t>(k);
-      const fs::path sym = data / "watertight_shrec07/Corrs" / (std::to_string(cls) + ".sym.info");
-      if (fs::exists(sym)) perm = read_bim_symmetry(sym.string(), static_cast<index_t>(fb.size()));
+      const std::vector<index_t> fa = read_bim_feature_points(data, pr.source).vertices;
+      const bim_feature_points target_points = read_bim_feature_points(data, pr.target);
+      const std::vector<index_t>& fb = target_points.vertices;
+      const std::vector<index_t>& perm = target_points.symmetry;
       const std::size_t n = std::min(fa.size(), fb.size());
       std::vector<index_t> truth, truth_sym;
       for (std::size_t k = 0; k < n; ++k) {
@@ -320,13 +318,23 @@ struct intrinsic_run {
   collection_records col;  ///< the closed genus-0 shapes kept; the others in col.skipped
   std::map<std::string, index_t> index_of;
   double records_seconds = 0, fuzzy_seconds = 0;
+  std::size_t pairs_aligned = 0;
+
+  /// "N shapes, pairs aligned P of A (Z %), records X s, fuzzy Y s"
+  [[nodiscard]] std::string counts() const {
+    const std::size_t n = col.records.size(), all = n * (n - 1) / 2;
+    return std::to_string(n) + " shapes, pairs aligned " + std::to_string(pairs_aligned) + " of " +
+           std::to_string(all) + " (" + fmt(100.0 * double(pairs_aligned) / double(std::max<std::size_t>(all, 1)), 1) +
+           " %), records " + fmt(records_seconds, 1) + " s, fuzzy " + fmt(fuzzy_seconds, 1) + " s";
+  }
 };
 
 /// Makes the records of `files`, keeps the closed genus-0 shapes, aligns them with the intrinsic aligner and
-/// computes the fuzzy correspondences; then calls `evaluate(run, aligner, result)`.
+/// computes the fuzzy correspondences, prints "<label>: <counts>" and the rounds; then calls
+/// `evaluate(run, aligner, result)`.
 template <class Evaluate>
-void run_intrinsic_collection(const std::vector<fs::path>& files, const std::string& name, const fs::path& out_dir,
-                              int threads, Evaluate&& evaluate) {
+void run_intrinsic_collection(const std::vector<fs::path>& files, const std::string& name, const std::string& label,
+                              const fs::path& out_dir, int threads, Evaluate&& evaluate) {
   const auto t0 = clock_type::now();
   intrinsic_run run;
   collection_records_options ro;
@@ -347,6 +355,9 @@ void run_intrinsic_collection(const std::vector<fs::path>& files, const std::str
   const auto t1 = clock_type::now();
   const auto r = compute_fuzzy_correspondences(run.col.records, aligner, fo);
   run.fuzzy_seconds = seconds_since(t1);
+  run.pairs_aligned = r.pairs_aligned;
+  std::cout << label << ": " << run.counts() << "\n";
+  print_log(r);
   evaluate(run, aligner, r);
 }
 
@@ -406,17 +417,12 @@ int run_scape(const fs::path& data, const fs::path& out_dir, int threads) {
   for (const auto& p : pairs) names.insert(p.source.relative_path()), names.insert(p.target.relative_path());
   std::vector<fs::path> files;
   for (const auto& n : names) files.push_back(data / n);
-  run_intrinsic_collection(files, "scape", out_dir, threads, [&](const intrinsic_run& run, intrinsic_aligner& aligner,
-                                                               const fuzzy_collection_result& r) {
+  run_intrinsic_collection(files, "scape", "SCAPE", out_dir, threads, [&](const intrinsic_run& run,
+                                                                        intrinsic_aligner& aligner,
+                                                                        const fuzzy_collection_result& r) {
     const std::vector<shape_record>& records = run.col.records;
     const std::vector<fs::path>& kept = run.col.files;
     auto index_of = run.index_of;
-    const double t_records = run.records_seconds, t_fuzzy = run.fuzzy_seconds;
-    const std::size_t all = records.size() * (records.size() - 1) / 2;
-    std::cout << "SCAPE: " << records.size() << " shapes, records " << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1)
-              << " s, pairs aligned " << r.pairs_aligned << " of " << all << " ("
-              << fmt(100.0 * double(r.pairs_aligned) / double(all), 1) << " %)\n";
-    print_log(r);
     const auto feats = read_bim_feature_vertices((data / "SCAPE/Corrs/1.pid").string());
     const auto perm = read_bim_symmetry((data / "SCAPE/Corrs/1.sym.info").string(), static_cast<index_t>(feats.size()));
     std::map<std::string, method_errors> total;
@@ -441,9 +447,7 @@ int run_scape(const fs::path& data, const fs::path& out_dir, int threads) {
     }
     std::ofstream summary(out_dir / "summary.md", std::ios::app);
     summary << "\n## SCAPE, the benchmark's 71 meshes as one intrinsic collection (run_fuzzy_benchmark --set scape)\n\n"
-            << records.size() << " shapes, pairs aligned " << r.pairs_aligned << " of " << all << ", records "
-            << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1) << " s, evaluation " << fmt(seconds_since(t2), 1)
-            << " s\n\n";
+            << run.counts() << ", evaluation " << fmt(seconds_since(t2), 1) << " s\n\n";
     write_method_table(summary, total);
   });
   return 0;
@@ -497,17 +501,12 @@ int run_cross(const std::string& set, const fs::path& data, const fs::path& out_
     if (ref.dataset == "SCAPE" && M.V.rows() != scape_template_rows) off_template.insert(name);
     files.push_back(file);
   }
-  run_intrinsic_collection(files, set, out_dir, threads, [&](const intrinsic_run& run, intrinsic_aligner& aligner,
-                                                               const fuzzy_collection_result& r) {
+  std::cout << set << ": " << repaired_count << " of " << files.size() << " meshes repaired\n";
+  run_intrinsic_collection(files, set, set, out_dir, threads, [&](const intrinsic_run& run, intrinsic_aligner& aligner,
+                                                                 const fuzzy_collection_result& r) {
     const std::vector<shape_record>& records = run.col.records;
     const std::vector<fs::path>& kept = run.col.files;
     auto index_of = run.index_of;
-    const double t_records = run.records_seconds, t_fuzzy = run.fuzzy_seconds;
-    const std::size_t all = records.size() * (records.size() - 1) / 2;
-    std::cout << set << ": " << records.size() << " shapes (" << repaired_count << " repaired), records "
-              << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1) << " s, pairs aligned " << r.pairs_aligned
-              << " of " << all << " (" << fmt(100.0 * double(r.pairs_aligned) / double(all), 1) << " %)\n";
-    print_log(r);
     std::map<std::string, method_errors> total;
     std::ofstream csv(out_dir / (set + "_pairs.csv"));
     csv << "source,target,method,mean,w025,mean_flip,flipped\n";
@@ -550,11 +549,8 @@ int run_cross(const std::string& set, const fs::path& data, const fs::path& out_
     std::ofstream summary(out_dir / "summary.md", std::ios::app);
     summary << "\n## The " << set << " cross-set list (" << query << ") as one intrinsic collection (run_fuzzy_benchmark --set "
             << set << ")\n\n"
-            << records.size() << " shapes, pairs aligned " << r.pairs_aligned << " of " << all << " ("
-            << fmt(100.0 * double(r.pairs_aligned) / double(all), 1) << " %), " << not_scored << " of " << pairs.size()
-            << " list pairs not scored, records " << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1)
-            << " s, evaluation " << fmt(seconds_since(t2), 1)
-            << " s\n\n";
+            << run.counts() << ", evaluation " << fmt(seconds_since(t2), 1) << " s; " << not_scored << " of "
+            << pairs.size() << " list pairs not scored\n\n";
     write_method_table(summary, total);
     write_curves(out_dir / (set + "_curves.dat"),
                  {{"pairwise", &total["pairwise"].raw},
