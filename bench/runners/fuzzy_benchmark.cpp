@@ -82,6 +82,7 @@ struct tuning {
   index_t samples = 128;   ///< --samples: K
   index_t edges_per_shape = -1;  ///< --edges-per-shape: M
   bool baseline = true;    ///< --no-baseline skips the all-pairs extrinsic baseline (slow: every pair aligned)
+  double weak_support = -1;  ///< --weak-support F: fuzzy_collection_options::weak_support_fraction (0 = off)
   /// --aligner truth: align the generated shapes by the least-squares affine map of their true landmarks (the
   /// chapter's Figure 4.7 experiment: how much the embedding itself loses when every alignment is right).
   std::string aligner = "extrinsic";
@@ -96,6 +97,7 @@ void apply(fuzzy_collection_options& fo) {
   if (knobs.time >= 0) fo.embedding.time = knobs.time;
   if (knobs.dims > 0) fo.embedding.dimensions = knobs.dims;
   if (knobs.iterations >= 0) fo.max_iterations = knobs.iterations;
+  if (knobs.weak_support >= 0) fo.weak_support_fraction = knobs.weak_support;
   if (knobs.edges_per_shape > 0) fo.graph.edges_per_shape = knobs.edges_per_shape;
 }
 
@@ -163,7 +165,8 @@ void print_log(const fuzzy_collection_result& r) {
   std::cout << "\n";
   for (const auto& it : r.log)
     std::cout << "    iteration " << it.iteration << ": edges " << it.edges << ", switched " << it.alternatives_changed
-              << ", pruned " << it.pruned << ", added " << it.added << ", reconnected " << it.reconnected
+              << ", pruned " << it.pruned << ", added " << it.added << " (reinforcing weak shapes " << it.reinforced
+              << "), reconnected " << it.reconnected
               << ", pairs aligned " << it.pairs_aligned << ", mean consistency " << fmt(it.mean_consistency, 4)
               << ", align " << fmt(it.align_seconds, 1) << " s, embed " << fmt(it.embed_seconds, 2) << " s, optimise "
               << fmt(it.optimize_seconds, 2) << " s\n";
@@ -900,6 +903,7 @@ int main(int argc, char** argv) {
     else if (a == "--samples") knobs.samples = std::stoi(next());
     else if (a == "--edges-per-shape") knobs.edges_per_shape = std::stoi(next());
     else if (a == "--no-baseline") knobs.baseline = false;
+    else if (a == "--weak-support") knobs.weak_support = std::stod(next());
     else if (a == "--aligner") knobs.aligner = next();
     else if (a == "--sigma") knobs.extrinsic.sigma_fraction = std::stod(next());
     else if (a == "--intrinsic-sigma") knobs.intrinsic_sigma = std::stod(next());
@@ -907,7 +911,7 @@ int main(int argc, char** argv) {
     else {
       std::cerr << "usage: run_fuzzy_benchmark --set shrec|scape|humans|animals|chairs|airplanes|coseg|psb --out DIR [--data DIR] [--classes 1,4] "
                    "[--count N] [--seed S] [--threads T]\n"
-                   "  [--time t] [--dims d] [--iterations I] [--samples K] [--edges-per-shape M] [--no-baseline]\n"
+                   "  [--time t] [--dims d] [--iterations I] [--samples K] [--edges-per-shape M] [--no-baseline] [--weak-support F]\n"
                    "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F]\n";
       return 2;
     }

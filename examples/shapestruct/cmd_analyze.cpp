@@ -832,7 +832,7 @@ std::string describe(const std::string& rel) {
   if (rel == "fuzzy/collection.json") return "fuzzy collection: mode, samples, shapes, skipped, pairs aligned, rounds";
   if (rel == "fuzzy/samples.txt") return "the K samples of every shape";
   if (rel == "fuzzy/graph.txt") return "the final alignment graph";
-  if (rel == "fuzzy/iterations.tsv") return "per graph optimisation round: edges, switches, pruned, added, consistency";
+  if (rel == "fuzzy/iterations.tsv") return "per graph optimisation round: edges, switches, pruned, added (of which for weakly supported shapes), consistency";
   if (rel == "fuzzy/fuzzy.bin") return "the diffusion embedding and widths tau defining the fuzzy correspondences";
   if (rel == "fuzzy/cache.json") return "what the resume caches were made with (a rerun with other settings is refused)";
   if (rel == "fuzzy/records") return "resume cache: one shape record per shape (NAME.rec)";
@@ -929,6 +929,7 @@ class stage_settings {
                                 {"edges_per_shape", f.edges_per_shape},
                                 {"diffusion_time", f.diffusion_time},
                                 {"dimensions", f.dimensions},
+                                {"weak_support", f.weak_support},
                                 {"up", f.up}});
     wanted_["inspect"] = ojson::object({{"shapes", shapes}});
     wanted_["templates"] = templates;

@@ -227,6 +227,7 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
   fo.alignments_in_memory = o.alignments_in_memory;
   fo.embedding.time = o.diffusion_time;
   fo.embedding.dimensions = static_cast<index_t>(o.dimensions);
+  fo.weak_support_fraction = o.weak_support;
   fo.cache_folder = out_dir / "pairs";
   fo.share = o.share;
   fo.on_progress = [&](const std::string& stage, std::size_t d, std::size_t t) { bar.update(stage, d, t); };
@@ -285,11 +286,12 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
   {
     // analyze (timings_in_results false) leaves the seconds out, so the file is the same on every run.
     const bool t = o.timings_in_results;
-    std::string s = std::string("iteration\tedges\tswitched\tpruned\tadded\treconnected\tpairs_aligned\tmean_consistency\t") +
+    std::string s = std::string("iteration\tedges\tswitched\tpruned\tadded\treinforced\treconnected\tpairs_aligned\tmean_consistency\t") +
                     (t ? "align_s\tembed_s\toptimize_s\t" : "") + "embedding_status\n";
     for (const auto& it : r.log)
       s += std::to_string(it.iteration) + "\t" + std::to_string(it.edges) + "\t" + std::to_string(it.alternatives_changed) +
-           "\t" + std::to_string(it.pruned) + "\t" + std::to_string(it.added) + "\t" + std::to_string(it.reconnected) +
+           "\t" + std::to_string(it.pruned) + "\t" + std::to_string(it.added) + "\t" + std::to_string(it.reinforced) +
+           "\t" + std::to_string(it.reconnected) +
            "\t" + std::to_string(it.pairs_aligned) + "\t" + std::to_string(it.mean_consistency) + "\t" +
            (t ? std::to_string(it.align_seconds) + "\t" + std::to_string(it.embed_seconds) + "\t" +
                     std::to_string(it.optimize_seconds) + "\t"
@@ -348,6 +350,12 @@ void add_fuzzy_run_options(CLI::App& app, fuzzy_cli_options& o, const std::strin
   app.add_option("--dimensions", o.dimensions, prefix + "dimensions of the diffusion embedding (default 64)")
       ->type_name("D")
       ->check(at_least(1LL));
+  app.add_option("--weak-support", o.weak_support,
+                 prefix + "a shape whose alignments' mean consistency is below this fraction of\n"
+                          "the median shape's is aligned with up to 2 more shapes (default 0.8;\n"
+                          "0 = only the chapter's pruned-for-new edge swaps)")
+      ->type_name("F")
+      ->check(in_range(0.0, 1.0));
   app.add_flag("--alignments-in-memory", o.alignments_in_memory,
                prefix + "keep every pairwise alignment's scores in memory instead of reading\n"
                         "them back from the pair cache each round: a little faster, memory grows\n"

@@ -28,6 +28,7 @@ struct fuzzy_cli_options {
   long long up = 1;
   double diffusion_time = 10.0;
   long long dimensions = 64;
+  double weak_support = 0.8;  ///< fuzzy_collection_options::weak_support_fraction (0 = the chapter's graph)
   bool alignments_in_memory = false;  ///< keep the alignments' scores in memory rather than re-reading OUT/pairs
   bool quiet = false;
   /// true (`shapestruct fuzzy`): collection.json holds "seconds" and iterations.tsv the seconds per step.

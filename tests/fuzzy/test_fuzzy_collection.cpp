@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
+#include "shapestruct/collection/alignment_graph.hpp"
 #include "shapestruct/fuzzy/correspondence_matrix.hpp"
 #include "shapestruct/fuzzy/diffusion_embedding.hpp"
 #include "shapestruct/fuzzy/fuzzy_collection.hpp"
@@ -78,6 +79,25 @@ struct planted_aligner {
     right.global_score = wrong ? 0.6 : 0.9;
     flip.scores = permutation_scores(reversed(K), wrong ? 0.95f : 0.5f);
     flip.global_score = wrong ? 0.95 : 0.5;
+    out.alternatives = {right, flip};
+    out.initial = ss::best_global_alternative(out.alternatives);
+    return out;
+  }
+};
+
+/// Every pair aligns exactly (alternative 0) and offers the reversed correspondence (alternative 1), except
+/// `wrong`, which starts from the reversal (higher B) with the true correspondence as its alternative 0.
+struct split_aligner {
+  int K;
+  std::pair<ss::index_t, ss::index_t> wrong;
+  ss::pair_alignment align(ss::index_t a, ss::index_t b) const {
+    const bool w = std::pair{std::min(a, b), std::max(a, b)} == wrong;
+    ss::pair_alignment out;
+    ss::alignment_alternative right, flip;
+    right.scores = permutation_scores(identity(K), 0.9f);
+    right.global_score = w ? 0.8 : 0.9;
+    flip.scores = permutation_scores(reversed(K), 0.9f);
+    flip.global_score = w ? 0.9 : 0.8;
     out.alternatives = {right, flip};
     out.initial = ss::best_global_alternative(out.alternatives);
     return out;
@@ -232,6 +252,53 @@ TEST_CASE("graph optimisation repairs a deliberately wrong edge planted in a sma
       const auto m = r.fuzzy.best_matches(k, l);
       for (ss::index_t i = 0; i < K; ++i) CHECK(m[std::size_t(i)] == i);
     }
+}
+
+TEST_CASE("graph optimisation aligns a shape whose two alignments disagree once more, and then settles it") {
+  const int N = 12, K = 10;
+  const auto records = planted_records(N, K);
+  ss::fuzzy_collection_options o;
+  o.embedding.dimensions = 16;
+  o.threads = 1;
+  o.graph.edges_per_shape = 1;
+  // A shape with exactly two alignments in the initial graph; one of them starts reversed.
+  std::vector<Eigen::VectorXd> d;
+  for (const auto& r : records) d.push_back(r.descriptor);
+  const auto g0 = ss::initial_alignment_graph(ss::descriptor_distance_matrix(d), o.graph);
+  std::vector<std::vector<ss::index_t>> adjacent(N);
+  for (const auto& [a, b] : g0.edges) adjacent[std::size_t(a)].push_back(b), adjacent[std::size_t(b)].push_back(a);
+  ss::index_t X = ss::no_index;
+  for (ss::index_t k = 0; k < N && X == ss::no_index; ++k)
+    if (adjacent[std::size_t(k)].size() == 2) X = k;
+  REQUIRE(X != ss::no_index);
+  const ss::index_t Y = adjacent[std::size_t(X)][1];
+  const split_aligner aligner{K, {std::min(X, Y), std::max(X, Y)}};
+  auto maps_by_index = [&](const ss::fuzzy_collection_result& r, ss::index_t k, ss::index_t l) {
+    const auto m = r.fuzzy.best_matches(k, l);
+    for (ss::index_t i = 0; i < K; ++i)
+      if (m[std::size_t(i)] != i) return false;
+    return true;
+  };
+  o.weak_support_fraction = 0;  // the chapter: one right and one reversed alignment look alike, X is never settled
+  const auto stuck = ss::compute_fuzzy_correspondences(records, aligner, o, ss::dense_embedding_solver{});
+  bool settled = true;
+  for (ss::index_t l = 0; l < N; ++l)
+    if (l != X) settled = settled && maps_by_index(stuck, X, l);
+  CHECK_FALSE(settled);
+  for (const auto& it : stuck.log) CHECK(it.reinforced == 0);
+  o.weak_support_fraction = 0.8;  // the default
+  const auto r = ss::compute_fuzzy_correspondences(records, aligner, o, ss::dense_embedding_solver{});
+  ss::index_t reinforced = 0;
+  for (const auto& it : r.log) reinforced += it.reinforced;
+  CHECK(reinforced >= 1);
+  CHECK(reinforced <= o.extra_edges_per_weak_shape * N);
+  CHECK(r.pairs_aligned == stuck.pairs_aligned + std::size_t(reinforced));
+  CHECK(r.converged);
+  for (ss::index_t k = 0; k < N; ++k)
+    for (ss::index_t l = 0; l < N; ++l)
+      if (k != l) CHECK(maps_by_index(r, k, l));
+  o.weak_support_fraction = 1.5;
+  CHECK_THROWS_AS((void)ss::compute_fuzzy_correspondences(records, aligner, o), ss::invalid_input);
 }
 
 TEST_CASE("fuzzy collection: one and two threads give identical results, and a resumed run aligns nothing") {

@@ -44,6 +44,13 @@ struct fuzzy_collection_options {
   /// New edges join shapes whose shortest path in the pruned graph is longer than this many edges.
   index_t new_edge_min_path = 3;
   index_t max_iterations = 10;  ///< the chapter converges within 8
+  /// A shape whose edges' mean consistency is below this fraction of the median shape's is weakly supported:
+  /// its few alignments disagree or lead to shapes that are themselves unsure, so f cannot settle it (two right
+  /// and two wrong alignments look alike to the consistency score). Each round it is aligned with the nearest
+  /// shape by descriptor it has no alignment with yet, up to extra_edges_per_weak_shape times. 0 = off (the
+  /// chapter only swaps pruned edges for new ones).
+  double weak_support_fraction = 0.8;
+  index_t extra_edges_per_weak_shape = 2;
   /// Integrated fuzzy correspondences rank the candidate new edges over every stride-th sample of each shape
   /// (1 = all K^2 pairs); the first farthest-point samples cover the shape evenly, so 4 (64 of 128^2 pairs)
   /// changes the ranking little and is 16 times cheaper, which matters when O(N^2) pairs are candidates.
@@ -78,6 +85,7 @@ struct fuzzy_iteration {
   index_t pruned = 0;                ///< inconsistent edges removed
   index_t added = 0;                 ///< new edges aligned and added
   index_t reconnected = 0;           ///< pruned edges put back because the graph fell apart without them
+  index_t reinforced = 0;            ///< of the added edges, those that align a weakly supported shape once more
   std::size_t pairs_aligned = 0;     ///< distinct pairs aligned so far (from the cache or computed)
   double mean_consistency = 0;       ///< mean score_f over the graph's edges before pruning
   double align_seconds = 0, embed_seconds = 0, optimize_seconds = 0;
@@ -122,6 +130,28 @@ inline double consistency_score(const alignment_alternative& alt, const fuzzy_co
   return consistency_score(alt, f.block(source, target));
 }
 
+/// weak_support_fraction (fuzzy_collection_options): shapes whose edges' mean consistency `score` is below
+/// `fraction` of the median over the shapes that have edges. Shapes without edges are not weak (nothing to add to).
+inline std::vector<bool> weakly_supported_shapes(index_t N, const std::vector<std::pair<index_t, index_t>>& edges,
+                                                 const std::vector<double>& score, double fraction) {
+  std::vector<double> sum(static_cast<std::size_t>(N), 0.0);
+  std::vector<index_t> degree(static_cast<std::size_t>(N), 0);
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    for (const index_t s : {edges[e].first, edges[e].second}) sum[std::size_t(s)] += score[e], ++degree[std::size_t(s)];
+  std::vector<double> support;
+  for (index_t s = 0; s < N; ++s)
+    if (degree[std::size_t(s)] > 0) support.push_back(sum[std::size_t(s)] / double(degree[std::size_t(s)]));
+  std::vector<bool> weak(static_cast<std::size_t>(N), false);
+  if (support.empty()) return weak;
+  std::vector<double> sorted = support;
+  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  for (index_t s = 0; s < N; ++s)
+    if (degree[std::size_t(s)] > 0 && sum[std::size_t(s)] / double(degree[std::size_t(s)]) < fraction * median)
+      weak[std::size_t(s)] = true;
+  return weak;
+}
+
 }  // namespace detail
 
 /// Fuzzy correspondences of a collection (ch. 4.3): initial alignment graph from the records' descriptors, the
@@ -150,6 +180,9 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
   if (options.ifc_stride < 1 || options.max_iterations < 0 || options.new_edge_min_path < 1)
     throw invalid_input(input_error::bad_parameter, no_index,
                         std::string(who) + ": ifc_stride and new_edge_min_path must be >= 1, max_iterations >= 0");
+  if (!(options.weak_support_fraction >= 0 && options.weak_support_fraction <= 1) || options.extra_edges_per_weak_shape < 0)
+    throw invalid_input(input_error::bad_parameter, no_index,
+                        std::string(who) + ": weak_support_fraction must be in [0, 1], extra_edges_per_weak_shape >= 0");
   auto progress = [&](const std::string& stage, std::size_t done, std::size_t total) {
     if (options.on_progress) options.on_progress(stage, done, total);
   };
@@ -197,6 +230,7 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
   };
 
   fuzzy_collection_result out;
+  std::vector<index_t> extra_edges(static_cast<std::size_t>(N), 0);  // alignments added for weak support, per shape
   fuzzy_iteration first;
   {
     const auto t0 = clock::now();
@@ -300,6 +334,26 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
         std::stable_sort(by_rank.begin(), by_rank.end(), [&](std::size_t x, std::size_t y) { return rank[x] > rank[y]; });
         by_rank.resize(std::min<std::size_t>(by_rank.size(), std::size_t(add)));
         for (const auto c : by_rank) added.push_back(candidates[c]);
+      }
+    }
+    // 4. Weakly supported shapes: one more alignment each, with the nearest shape by descriptor not yet aligned.
+    if (options.weak_support_fraction > 0 && options.extra_edges_per_weak_shape > 0) {
+      const auto weak = detail::weakly_supported_shapes(N, edges, best_score, options.weak_support_fraction);
+      std::set<key> taken(added.begin(), added.end());
+      for (index_t s = 0; s < N; ++s) {
+        if (!weak[std::size_t(s)] || extra_edges[std::size_t(s)] >= options.extra_edges_per_weak_shape) continue;
+        index_t partner = no_index;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (index_t t = 0; t < N; ++t) {
+          if (t == s || weak[std::size_t(t)] || store.contains(s, t) || taken.count(alignment_store::make_key(s, t))) continue;
+          const double d = (descriptors[std::size_t(s)] - descriptors[std::size_t(t)]).squaredNorm();
+          if (d < nearest) nearest = d, partner = t;
+        }
+        if (partner == no_index) continue;
+        taken.insert(alignment_store::make_key(s, partner));
+        added.push_back(alignment_store::make_key(s, partner));
+        ++extra_edges[std::size_t(s)];
+        ++it.reinforced;
       }
     }
     it.optimize_seconds = since(t_opt);
