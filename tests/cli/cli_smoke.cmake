@@ -69,6 +69,7 @@ run_cli_error("not a number" "--max-examples.*many" inspect ${WORK} --max-exampl
 run_cli_error("not a number" "--diffusion-time.*x1" fuzzy ${WORK} -o ${WORK}/never --diffusion-time x1)
 run_cli_error("not a number" "N.*three" generate chairs three -o ${WORK}/never)
 run_cli_error("option without the one it refines" "--min-gain requires --consistent-blended" fuzzy-map ${WORK} a b -o ${WORK}/never.map --min-gain 0.2)
+run_cli_error("out of range" "--weak-support: must be in 0..1, got 1.5" fuzzy ${WORK} -o ${WORK}/never --weak-support 1.5)
 run_cli_error("out of range" "--min-gain.*-0.5" fuzzy-map ${WORK} a b -o ${WORK}/never.map --consistent-blended --min-gain -0.5)
 run_cli_error("out of range" "--threads: must be >= 0, got -1" generate chairs 2 -o ${WORK}/never --threads -1)
 list(FIND commands explore explore_index)
