@@ -47,8 +47,8 @@ struct fuzzy_collection_options {
   /// A shape whose edges' mean consistency is below this fraction of the median shape's is weakly supported:
   /// its few alignments disagree or lead to shapes that are themselves unsure, so f cannot settle it (two right
   /// and two wrong alignments look alike to the consistency score). Each round it is aligned with the nearest
-  /// shape by descriptor it has no alignment with yet, up to extra_edges_per_weak_shape times. 0 = off (the
-  /// chapter only swaps pruned edges for new ones).
+  /// shape by descriptor that it has no alignment with yet and that is not weak itself, up to
+  /// extra_edges_per_weak_shape times in all. 0 = off (the chapter only swaps pruned edges for new ones).
   double weak_support_fraction = 0.8;
   index_t extra_edges_per_weak_shape = 2;
   /// Integrated fuzzy correspondences rank the candidate new edges over every stride-th sample of each shape
@@ -143,9 +143,8 @@ inline std::vector<bool> weakly_supported_shapes(index_t N, const std::vector<st
     if (degree[std::size_t(s)] > 0) support.push_back(sum[std::size_t(s)] / double(degree[std::size_t(s)]));
   std::vector<bool> weak(static_cast<std::size_t>(N), false);
   if (support.empty()) return weak;
-  std::vector<double> sorted = support;
-  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
-  const double median = sorted[sorted.size() / 2];
+  std::nth_element(support.begin(), support.begin() + std::ptrdiff_t(support.size() / 2), support.end());
+  const double median = support[support.size() / 2];
   for (index_t s = 0; s < N; ++s)
     if (degree[std::size_t(s)] > 0 && sum[std::size_t(s)] / double(degree[std::size_t(s)]) < fraction * median)
       weak[std::size_t(s)] = true;
@@ -160,7 +159,8 @@ inline std::vector<bool> weakly_supported_shapes(index_t N, const std::vector<st
 /// consistent alternative, edges far below both shapes' best are pruned, and as many new pairs are aligned,
 /// chosen among those more than new_edge_min_path edges apart by integrated fuzzy correspondence, then by edge
 /// rank. The graph is kept connected: a prune that would split it is undone for the most consistent of the
-/// pruned edges that reconnect it (the chapter assumes a connected collection and does not say).
+/// pruned edges that reconnect it (the chapter assumes a connected collection and does not say). A shape whose
+/// edges are far less consistent than the median shape's is aligned with more shapes (weak_support_fraction).
 /// \param records the shapes (at least 2)  \param aligner the pairwise matcher policy
 /// \param solver EmbeddingSolver for the diffusion map
 /// \throws invalid_input (empty) for fewer than 2 shapes, (size_mismatch) for descriptors of unequal length,
