@@ -44,6 +44,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -83,6 +84,7 @@ struct tuning {
   index_t edges_per_shape = -1;  ///< --edges-per-shape: M
   bool baseline = true;    ///< --no-baseline skips the all-pairs extrinsic baseline (slow: every pair aligned)
   double weak_support = -1;  ///< --weak-support F: fuzzy_collection_options::weak_support_fraction (0 = off)
+  std::optional<double> orientation_margin;  ///< --orientation-margin F: fuzzy_collection_options' (negative = off)
   /// --aligner truth: align the generated shapes by the least-squares affine map of their true landmarks (the
   /// chapter's Figure 4.7 experiment: how much the embedding itself loses when every alignment is right).
   std::string aligner = "extrinsic";
@@ -98,6 +100,7 @@ void apply(fuzzy_collection_options& fo) {
   if (knobs.dims > 0) fo.embedding.dimensions = knobs.dims;
   if (knobs.iterations >= 0) fo.max_iterations = knobs.iterations;
   if (knobs.weak_support >= 0) fo.weak_support_fraction = knobs.weak_support;
+  if (knobs.orientation_margin) fo.orientation_margin = *knobs.orientation_margin;
   if (knobs.edges_per_shape > 0) fo.graph.edges_per_shape = knobs.edges_per_shape;
 }
 
@@ -157,7 +160,7 @@ std::vector<int> parse_list(const std::string& s) {
   return out;
 }
 
-void print_log(const fuzzy_collection_result& r) {
+void print_log(const fuzzy_collection_result& r, const std::vector<shape_record>* records = nullptr) {
   const auto& ev = r.fuzzy.embedding().eigenvalues;
   std::cout << "    eigenvalues (index: lambda):";
   for (const index_t i : {0, 7, 15, 31, 63, 127})
@@ -170,6 +173,20 @@ void print_log(const fuzzy_collection_result& r) {
               << ", pairs aligned " << it.pairs_aligned << ", mean consistency " << fmt(it.mean_consistency, 4)
               << ", align " << fmt(it.align_seconds, 1) << " s, embed " << fmt(it.embed_seconds, 2) << " s, optimise "
               << fmt(it.optimize_seconds, 2) << " s\n";
+  if (!r.orientation.empty()) {
+    std::cout << "    orientation: " << r.orientation_votes << " edges voted; opposite the rest (votes agreeing / against):";
+    const auto votes = detail::orientation_votes_of(r.edges, knobs.orientation_margin.value_or(fuzzy_collection_options{}.orientation_margin));
+    index_t opposite = 0;
+    for (std::size_t k = 0; k < r.orientation.size(); ++k) {
+      if (r.orientation[k] > 0) continue;
+      int agree = 0, against = 0;
+      for (const auto& v : votes)
+        if (std::size_t(v.a) == k || std::size_t(v.b) == k) ++(v.sign > 0 ? agree : against);
+      std::cout << " " << (records ? (*records)[k].name : std::to_string(k)) << " (" << agree << " / " << against << ")";
+      ++opposite;
+    }
+    std::cout << (opposite == 0 ? " none" : "") << "\n";
+  }
 }
 
 // ---------------------------------------------------------------------------------------------- SHREC'07
@@ -220,7 +237,7 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
     std::cout << "class " << cls << ": " << records.size() << " shapes, records " << fmt(t_records, 1) << " s, fuzzy "
               << fmt(t_fuzzy, 1) << " s, pairs aligned " << r.pairs_aligned << " of "
               << records.size() * (records.size() - 1) / 2 << "\n";
-    print_log(r);
+    print_log(r, &records);
     std::map<std::string, method_errors> here;
     std::vector<double> stored;
     for (const auto& pr : by_class[cls]) {
@@ -260,9 +277,13 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
             << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "\n";
       };
       const blended_match_result<double> pairwise = aligner.match(ia, ib);
-      const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent);
+      consistent_blended_options oriented = knobs.consistent;
+      oriented.orientation = r.orientation;
+      const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, oriented);
       score("pairwise", pairwise.map.nearest);
       score("consistent_blended", cb.map.nearest);
+      if (!r.orientation.empty())  // the same choice without the orientation, for the comparison
+        score("consistent_unoriented", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent).map.nearest);
       score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
       for (std::size_t k = 0; k < cb.groups.size(); ++k) {  // every candidate blended map, to study the selection
         const auto& g = pairwise.blended[std::size_t(cb.groups[k])];
@@ -294,7 +315,7 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
             << fmt(within(here["stored_original"].raw, 0.25)) << " |\n";
     summary.flush();
     std::cout << "  within 0.25 raw / flips (flipped pairs): pairwise " << cell("pairwise") << ", consistent blended "
-              << cell("consistent_blended") << ", best fuzzy " << cell("best_fuzzy") << ", stored original "
+              << cell("consistent_blended") << " (without the orientation " << cell("consistent_unoriented") << ")" << ", best fuzzy " << cell("best_fuzzy") << ", stored original "
               << fmt(within(here["stored_original"].raw, 0.25)) << "\n";
   }
   summary << "\n| all classes | within 0.05 | within 0.10 | within 0.25 | mean | with flips: within 0.25 | mean | flipped pairs |\n"
@@ -360,7 +381,7 @@ void run_intrinsic_collection(const std::vector<fs::path>& files, const std::str
   run.fuzzy_seconds = seconds_since(t1);
   run.pairs_aligned = r.pairs_aligned;
   std::cout << label << ": " << run.counts() << "\n";
-  print_log(r);
+  print_log(r, &run.col.records);
   evaluate(run, aligner, r);
 }
 
@@ -386,9 +407,13 @@ void score_list_pair(intrinsic_aligner& aligner, const fuzzy_collection_result& 
         << fmt(std::min(mean_of(e_raw), mean_of(e_sym)), 4) << "," << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "\n";
   };
   const blended_match_result<double> pairwise = aligner.match(ia, ib);
-  const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent);
+  consistent_blended_options oriented = knobs.consistent;
+  oriented.orientation = r.orientation;
+  const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, oriented);
   score("pairwise", pairwise.map.nearest);
   score("consistent_blended", cb.map.nearest);
+  if (!r.orientation.empty())  // the same choice without the orientation, for the comparison
+    score("consistent_unoriented", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent).map.nearest);
   score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
   if (fs::exists(stored)) {
     const auto blocks = read_bim_result(stored.string());
@@ -904,6 +929,7 @@ int main(int argc, char** argv) {
     else if (a == "--edges-per-shape") knobs.edges_per_shape = std::stoi(next());
     else if (a == "--no-baseline") knobs.baseline = false;
     else if (a == "--weak-support") knobs.weak_support = std::stod(next());
+    else if (a == "--orientation-margin") knobs.orientation_margin = std::stod(next());
     else if (a == "--aligner") knobs.aligner = next();
     else if (a == "--sigma") knobs.extrinsic.sigma_fraction = std::stod(next());
     else if (a == "--intrinsic-sigma") knobs.intrinsic_sigma = std::stod(next());
@@ -912,6 +938,7 @@ int main(int argc, char** argv) {
       std::cerr << "usage: run_fuzzy_benchmark --set shrec|scape|humans|animals|chairs|airplanes|coseg|psb --out DIR [--data DIR] [--classes 1,4] "
                    "[--count N] [--seed S] [--threads T]\n"
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--edges-per-shape M] [--no-baseline] [--weak-support F]\n"
+                   "  [--orientation-margin F]\n"
                    "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F]\n";
       return 2;
     }

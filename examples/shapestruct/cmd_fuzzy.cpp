@@ -85,10 +85,12 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
     if (collection.mode != "intrinsic")
       throw cli::usage_error("--consistent-blended needs an intrinsic collection (this one is extrinsic)");
     intrinsic_aligner aligner(records, [&files](index_t k) { return read_mesh(files[std::size_t(k)]).mesh; });
-    const auto cb = make_consistent_blended_map(aligner, f, a, b, {.min_consistency_gain = c.min_gain});
+    const auto cb = make_consistent_blended_map(aligner, f, a, b,
+                                                {.min_consistency_gain = c.min_gain, .orientation = collection.orientation});
     map = cb.map.nearest;
-    std::fprintf(stderr, "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld, the most consistent is %ld)\n",
-                 long(cb.group), cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group));
+    std::fprintf(stderr, "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld, the most consistent is %ld%s)\n",
+                 long(cb.group), cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group),
+                 cb.opposite_orientation ? "; the two shapes sit in f the mirror way round, so the matcher's choice is kept" : "");
   } else {
     const bool on_vertices = !records[std::size_t(b)].sample_vertex.empty() && records[std::size_t(b)].sample_vertex[0] != no_index;
     const Eigen::Matrix<double, Eigen::Dynamic, 3> Vb =
@@ -301,11 +303,13 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
   }
   using ojson = nlohmann::ordered_json;
   auto shapes = ojson::array(), skipped = ojson::array();
-  for (std::size_t k = 0; k < col.records.size(); ++k)
+  for (std::size_t k = 0; k < col.records.size(); ++k) {
     shapes.push_back(ojson::object({{"name", col.records[k].name},
                                     {"file", fs::absolute(col.files[k]).string()},
                                     {"vertices", static_cast<long long>(col.records[k].vertex_count)},
                                     {"closed_genus0", col.records[k].closed_genus0}}));
+    if (!r.orientation.empty()) shapes.back()["orientation"] = int(r.orientation[k]);
+  }
   for (const auto& s : col.skipped) skipped.push_back(ojson::object({{"file", s.file.string()}, {"reason", s.reason}}));
   const std::size_t N = col.records.size();
   ojson manifest = ojson::object({

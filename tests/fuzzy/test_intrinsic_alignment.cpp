@@ -132,3 +132,35 @@ TEST_CASE("consistent blended map: the collection overrules the matcher only by 
   for (const double bad : {-0.1, std::nan("")})
     CHECK_THROWS_AS((void)make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.min_consistency_gain = bad}), invalid_input);
 }
+
+TEST_CASE("consistent blended map: between shapes of opposite orientation the matcher's own choice is kept") {
+  const auto c = make_creatures(3);
+  // Started from B, which cannot tell the creature's front from its back: the collection may settle a copy mirrored.
+  const intrinsic_aligner aligner(c.records, [&](index_t k) { return c.meshes[std::size_t(k)]; }, flip_telling_options());
+  fuzzy_collection_options fo;
+  fo.embedding.dimensions = 16;
+  fo.threads = 2;
+  CHECK(compute_fuzzy_correspondences(c.records, aligner, fo).orientation.empty());  // off by default
+  fo.orientation_margin = 0.1;
+  const auto r = compute_fuzzy_correspondences(c.records, aligner, fo);
+  REQUIRE(r.orientation.size() == 3);
+  CHECK(r.orientation_votes > 0);
+  for (const auto& e : r.edges) CHECK(e.preferred != no_index);  // the blended matcher always states its choice
+  index_t repaired = 0;  // pairs where the orientation changes the choice
+  for (index_t a = 0; a < 3; ++a)
+    for (index_t b = a + 1; b < 3; ++b) {
+      const auto match = aligner.match(a, b);
+      const auto oriented = make_consistent_blended_map(aligner, r.fuzzy, a, b, match, {.orientation = r.orientation});
+      const auto plain = make_consistent_blended_map(aligner, r.fuzzy, a, b, match);
+      MESSAGE("pair " << a << "-" << b << ": orientations " << int(r.orientation[std::size_t(a)]) << ", "
+                      << int(r.orientation[std::size_t(b)]) << "; matcher " << match.selected << ", without orientation "
+                      << plain.group << ", with " << oriented.group);
+      CHECK(oriented.opposite_orientation == (r.orientation[std::size_t(a)] != r.orientation[std::size_t(b)]));
+      // The copies are exact, so the matcher's selection is the true map: the oriented choice must be it.
+      CHECK(oriented.group == match.selected);
+      if (plain.group != oriented.group) ++repaired;
+    }
+  // Seen on this collection: one copy settles mirrored, and without the orientation both of its pairs take the flip.
+  CHECK(repaired == 2);
+  CHECK_THROWS_AS((void)make_consistent_blended_map(aligner, r.fuzzy, 0, 1, {.orientation = {1, 1}}), invalid_input);
+}

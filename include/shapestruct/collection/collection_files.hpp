@@ -85,6 +85,7 @@ class binary_reader {
 inline constexpr std::uint32_t record_magic = 0x52535353;     // "SSSR"
 inline constexpr std::uint32_t alignment_magic = 0x41535353;  // "SSSA"
 inline constexpr std::uint32_t collection_file_version = 1;
+inline constexpr std::uint32_t alignment_file_version = 2;  // 2: with the aligner's preferred alternative
 
 template <class M>
 void put_matrix(binary_writer& w, const M& m) {
@@ -150,10 +151,11 @@ inline void write_shape_record(const std::filesystem::path& path, const shape_re
 inline void write_pair_alignment(const std::filesystem::path& path, const pair_alignment& a) {
   detail::binary_writer w;
   w.put(detail::alignment_magic);
-  w.put(detail::collection_file_version);
+  w.put(detail::alignment_file_version);
   w.put<std::int64_t>(a.source);
   w.put<std::int64_t>(a.target);
   w.put<std::int64_t>(a.initial);
+  w.put<std::int64_t>(a.preferred);
   w.put(a.seconds);
   w.put<std::uint64_t>(a.alternatives.size());
   for (const auto& alt : a.alternatives) {
@@ -176,11 +178,12 @@ inline void write_pair_alignment(const std::filesystem::path& path, const pair_a
   const std::string bytes = io_detail::read_file_bytes(path);
   detail::binary_reader rd(bytes, path.string());
   if (rd.get<std::uint32_t>() != detail::alignment_magic) rd.fail("not a pairwise alignment");
-  if (rd.get<std::uint32_t>() != detail::collection_file_version) rd.fail("written by another version");
+  if (rd.get<std::uint32_t>() != detail::alignment_file_version) rd.fail("written by another version");
   pair_alignment a;
   a.source = rd.get<std::int64_t>();
   a.target = rd.get<std::int64_t>();
   a.initial = rd.get<std::int64_t>();
+  a.preferred = rd.get<std::int64_t>();
   a.seconds = rd.get<double>();
   const auto n = rd.get<std::uint64_t>();
   if (n > bytes.size()) rd.fail("alternative count");
@@ -208,6 +211,7 @@ inline void write_pair_alignment(const std::filesystem::path& path, const pair_a
     alt.scores.finalize();
   }
   if (a.initial < 0 || (n > 0 && a.initial >= static_cast<index_t>(n))) rd.fail("initial alternative");
+  if (a.preferred != no_index && (a.preferred < 0 || a.preferred >= static_cast<index_t>(n))) rd.fail("preferred alternative");
   return a;
 }
 

@@ -33,6 +33,10 @@ struct pair_alignment {
   index_t target = no_index;
   std::vector<alignment_alternative> alternatives;
   index_t initial = 0;
+  /// The alternative the aligner itself would pick when it judges by more than the global score (the blended
+  /// matcher's selection, which can tell a map from its symmetric flip); no_index when it has no such choice.
+  /// The collection's orientation (collection_orientation.hpp) is voted from it.
+  index_t preferred = no_index;
   double seconds = 0;  ///< wall time of the alignment (for the timing report)
 };
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,10 @@ struct consistent_blended_options {
   /// collection shares (left and right of an airplane): f cannot tell the two maps apart, the matcher's own
   /// selection (area, confidence and convexity ranks) often can. 0 is the chapter's rule (the most consistent map, always).
   double min_consistency_gain = 0.1;
+  /// The collection's orientation (fuzzy_collection_result::orientation), or empty. Between two shapes of
+  /// opposite orientation f itself is mirrored, and its most consistent map with it: the matcher's own choice is
+  /// kept.
+  std::vector<std::int8_t> orientation{};
 };
 
 /// The consistent blended map of ch. 4.4.5: of the blended maps the blended matcher builds for (a, b), the one
@@ -75,11 +80,13 @@ struct consistent_blended_map {
   index_t most_consistent_group = no_index;  ///< the group with the highest consistency
   std::vector<double> consistency;    ///< score_f (eq. 4.10) of every group with a map, in `groups`' order
   std::vector<index_t> groups;        ///< the group (index in the match's `blended`) of each consistency entry
+  bool opposite_orientation = false;  ///< a and b sit in f the mirror way round: the matcher's choice was kept
 };
 
 /// The consistent blended map of shapes a -> b chosen among the blended maps of `r`, a match of a -> b by
 /// `aligner` (intrinsic_aligner::match), so a caller that also wants the pairwise map matches once.
-/// \throws invalid_input (bad_parameter) for a negative or non-finite min_consistency_gain.
+/// \throws invalid_input (bad_parameter) for a negative or non-finite min_consistency_gain, (size_mismatch) for an
+///         orientation not of the collection's size.
 [[nodiscard]] inline consistent_blended_map make_consistent_blended_map(const intrinsic_aligner& aligner,
                                                                         const fuzzy_correspondence& f, index_t a,
                                                                         index_t b, const blended_match_result<double>& r,
@@ -88,6 +95,11 @@ struct consistent_blended_map {
     throw invalid_input(input_error::bad_parameter, no_index,
                         "make_consistent_blended_map: min_consistency_gain must be finite and at least 0, got " +
                             std::to_string(options.min_consistency_gain));
+  const auto& orientation = options.orientation;
+  if (!orientation.empty() && static_cast<index_t>(orientation.size()) != f.shapes())
+    throw invalid_input(input_error::size_mismatch, no_index,
+                        "make_consistent_blended_map: the orientation has " + std::to_string(orientation.size()) +
+                            " entries for a collection of " + std::to_string(f.shapes()));
   const pair_alignment alts = aligner.alignment_from(a, b, r);
   consistent_blended_map out;
   out.pairwise_group = r.selected;
@@ -101,8 +113,10 @@ struct consistent_blended_map {
     if (s > best) best = s, out.most_consistent_group = g;
     if (g == r.selected) pairwise = s;
   }
+  out.opposite_orientation = !orientation.empty() && orientation[std::size_t(a)] != orientation[std::size_t(b)];
   out.group = out.most_consistent_group;
-  if (out.group == no_index || (pairwise >= 0 && best <= (1 + options.min_consistency_gain) * pairwise))
+  if (out.group == no_index || (pairwise >= 0 && best <= (1 + options.min_consistency_gain) * pairwise) ||
+      (out.opposite_orientation && pairwise >= 0))
     out.group = r.selected;
   out.map = r.blended[std::size_t(out.group)].map;
   return out;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // fuzzy_output: the output folder of `shapestruct fuzzy` read back (the shapes, their records and f).
 #pragma once
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@ struct fuzzy_output {
   std::vector<std::filesystem::path> files;  ///< every shape's input file, in the collection's order
   std::vector<shape_record> records;         ///< name, samples, nearest sample of every vertex, ...
   fuzzy_correspondence fuzzy;                ///< f, from fuzzy.bin
+  std::vector<std::int8_t> orientation;      ///< +1 / -1 per shape (fuzzy_collection_result::orientation), or empty
   [[nodiscard]] index_t shapes() const noexcept { return static_cast<index_t>(records.size()); }
 };
 
@@ -50,7 +52,15 @@ struct fuzzy_output {
       throw io_error(file_error::cannot_open, record.string(), 0, 0, "missing: the record of shape '" + name + "'");
     out.records.push_back(read_shape_record(record));
     out.files.emplace_back(json_required<std::string>(s, "file", manifest_path));
+    if (json_member(s, "orientation") != nullptr) {
+      const int o = json_required<int>(s, "orientation", manifest_path);
+      if (o != 1 && o != -1)
+        throw io_error(file_error::bad_value, manifest_path, 0, 0, "shape '" + name + "': \"orientation\" must be 1 or -1");
+      out.orientation.push_back(std::int8_t(o));
+    }
   }
+  if (!out.orientation.empty() && out.orientation.size() != out.records.size())
+    throw io_error(file_error::bad_value, manifest_path, 0, 0, "\"orientation\" is given for some shapes but not all");
   out.fuzzy = read_fuzzy_correspondence(folder / "fuzzy.bin");
   if (out.fuzzy.shapes() != out.shapes())
     throw io_error(file_error::bad_value, (folder / "fuzzy.bin").string(), 0, 0,
