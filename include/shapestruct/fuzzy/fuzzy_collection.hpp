@@ -50,8 +50,7 @@ struct fuzzy_collection_options {
   /// and two wrong alignments look alike to the consistency score). Each round it is aligned with the nearest
   /// shape by descriptor that it has no alignment with yet and that is not weak itself, up to
   /// extra_edges_per_weak_shape times in all: in the first round, and later in rounds where Algorithm 1 still
-  /// switches or prunes edges.
-  /// 0 = off (the chapter only swaps pruned edges for new ones).
+  /// switches or prunes edges. 0 = off (the chapter only swaps pruned edges for new ones).
   double weak_support_fraction = 0.8;
   index_t extra_edges_per_weak_shape = 2;
   /// Integrated fuzzy correspondences rank the candidate new edges over every stride-th sample of each shape
@@ -135,10 +134,6 @@ inline std::vector<orientation_vote> orientation_votes_of(const std::vector<fuzz
   }
   return votes;
 }
-
-}  // namespace detail
-
-namespace detail {
 
 /// Consistency score of an alternative (eq. 4.10) given F = f.block(source, target): sum over source samples p1
 /// of sum_p2 a(p1, p2) f(p1, p2), each row divided by sum over the target's samples of f(p1, p).
