@@ -152,12 +152,6 @@ inline double consistency_score(const alignment_alternative& alt, const Eigen::M
   return score;
 }
 
-/// The same, computing the block of f itself (one alternative).
-inline double consistency_score(const alignment_alternative& alt, const fuzzy_correspondence& f, index_t source,
-                                index_t target) {
-  return consistency_score(alt, f.block(source, target));
-}
-
 /// weak_support_fraction (fuzzy_collection_options): shapes whose edges' mean consistency `score` is below
 /// `fraction` of the median over the shapes that have edges. Shapes without edges are not weak (nothing to add to).
 inline std::vector<bool> weakly_supported_shapes(index_t N, const std::vector<std::pair<index_t, index_t>>& edges,
