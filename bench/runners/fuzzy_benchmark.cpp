@@ -31,7 +31,9 @@
 //       index against every human segmentation of the target (the source's first human segmentation is carried).
 // Options: --aligner truth (generated sets) aligns every pair by the least-squares affine map of the true landmarks,
 // the chapter's Figure 4.7 experiment; --sigma / --intrinsic-sigma set the score widths (sigma_fraction of the
-// extrinsic and intrinsic aligners); --min-gain the consistent blended map's min_consistency_gain; --time, --dims,
+// extrinsic and intrinsic aligners); --min-gain the consistent blended map's min_consistency_gain;
+// --no-fuzzy-candidate leaves the refined best fuzzy map out of its candidates (by default the runner also scores
+// that choice as consistent_blended_only); --time, --dims,
 // --iterations, --samples, --edges-per-shape (M) the pipeline's.
 // Writes <set>_pairs.csv (per pair and method; for shrec also shrec_groups.csv, every candidate blended map of a
 // pair with its selection features and errors), <set>_curves.dat (fraction within D, D = 0 .. 0.25) and
@@ -284,6 +286,11 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
       score("consistent_blended", cb.map.nearest);
       if (!r.orientation.empty())  // the same choice without the orientation, for the comparison
         score("consistent_unoriented", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent).map.nearest);
+      if (knobs.consistent.fuzzy_candidate) {  // the choice among the blended maps alone, for the comparison
+        consistent_blended_options blended_only = oriented;
+        blended_only.fuzzy_candidate = false;
+        score("consistent_blended_only", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, blended_only).map.nearest);
+      }
       score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
       for (std::size_t k = 0; k < cb.groups.size(); ++k) {  // every candidate blended map, to study the selection
         const auto& g = pairwise.blended[std::size_t(cb.groups[k])];
@@ -315,7 +322,10 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
             << fmt(within(here["stored_original"].raw, 0.25)) << " |\n";
     summary.flush();
     std::cout << "  within 0.25 raw / flips (flipped pairs): pairwise " << cell("pairwise") << ", consistent blended "
-              << cell("consistent_blended") << " (without the orientation " << cell("consistent_unoriented") << ")" << ", best fuzzy " << cell("best_fuzzy") << ", stored original "
+              << cell("consistent_blended")
+              << (r.orientation.empty() ? std::string() : " (without the orientation " + cell("consistent_unoriented") + ")")
+              << (knobs.consistent.fuzzy_candidate ? " (among the blended maps only " + cell("consistent_blended_only") + ")" : std::string())
+              << ", best fuzzy " << cell("best_fuzzy") << ", stored original "
               << fmt(within(here["stored_original"].raw, 0.25)) << "\n";
   }
   summary << "\n| all classes | within 0.05 | within 0.10 | within 0.25 | mean | with flips: within 0.25 | mean | flipped pairs |\n"
@@ -414,6 +424,11 @@ void score_list_pair(intrinsic_aligner& aligner, const fuzzy_collection_result& 
   score("consistent_blended", cb.map.nearest);
   if (!r.orientation.empty())  // the same choice without the orientation, for the comparison
     score("consistent_unoriented", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent).map.nearest);
+  if (knobs.consistent.fuzzy_candidate) {  // the choice among the blended maps alone, for the comparison
+    consistent_blended_options blended_only = oriented;
+    blended_only.fuzzy_candidate = false;
+    score("consistent_blended_only", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, blended_only).map.nearest);
+  }
   score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
   if (fs::exists(stored)) {
     const auto blocks = read_bim_result(stored.string());
@@ -934,12 +949,13 @@ int main(int argc, char** argv) {
     else if (a == "--sigma") knobs.extrinsic.sigma_fraction = std::stod(next());
     else if (a == "--intrinsic-sigma") knobs.intrinsic_sigma = std::stod(next());
     else if (a == "--min-gain") knobs.consistent.min_consistency_gain = std::stod(next());
+    else if (a == "--no-fuzzy-candidate") knobs.consistent.fuzzy_candidate = false;
     else {
       std::cerr << "usage: run_fuzzy_benchmark --set shrec|scape|humans|animals|chairs|airplanes|coseg|psb --out DIR [--data DIR] [--classes 1,4] "
                    "[--count N] [--seed S] [--threads T]\n"
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--edges-per-shape M] [--no-baseline] [--weak-support F]\n"
                    "  [--orientation-margin F]\n"
-                   "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F]\n";
+                   "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F] [--no-fuzzy-candidate]\n";
       return 2;
     }
   }

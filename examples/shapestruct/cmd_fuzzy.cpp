@@ -60,6 +60,7 @@ struct fuzzy_map_command_line {
   std::string folder, a, b, out;
   bool consistent = false;
   double min_gain = consistent_blended_options{}.min_consistency_gain;
+  bool blended_only = false;
   long long threads = 0;
 };
 
@@ -86,11 +87,17 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
       throw cli::usage_error("--consistent-blended needs an intrinsic collection (this one is extrinsic)");
     intrinsic_aligner aligner(records, [&files](index_t k) { return read_mesh(files[std::size_t(k)]).mesh; });
     const auto cb = make_consistent_blended_map(aligner, f, a, b,
-                                                {.min_consistency_gain = c.min_gain, .orientation = collection.orientation});
+                                                {.min_consistency_gain = c.min_gain, .orientation = collection.orientation,
+                                                 .fuzzy_candidate = !c.blended_only, .threads = int(c.threads)});
     map = cb.map.nearest;
-    std::fprintf(stderr, "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld, the most consistent is %ld%s)\n",
-                 long(cb.group), cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group),
-                 cb.opposite_orientation ? "; the two shapes sit in f the mirror way round, so the matcher's choice is kept" : "");
+    if (cb.fuzzy_chosen)
+      std::fprintf(stderr, "fuzzy-map: the refined best fuzzy map chosen (consistency %.3g; of the %zu blended maps the "
+                   "matcher picks %ld, the most consistent is %ld)\n",
+                   cb.fuzzy_consistency, cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group));
+    else
+      std::fprintf(stderr, "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld, the most consistent is %ld%s)\n",
+                   long(cb.group), cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group),
+                   cb.opposite_orientation ? "; the two shapes sit in f the mirror way round, so the matcher's choice is kept" : "");
   } else {
     const bool on_vertices = !records[std::size_t(b)].sample_vertex.empty() && records[std::size_t(b)].sample_vertex[0] != no_index;
     const Eigen::Matrix<double, Eigen::Dynamic, 3> Vb =
@@ -410,12 +417,16 @@ cli::command_fn setup_fuzzy_map(CLI::App& app) {
       ->type_name("F")
       ->check(cli::at_least(0.0))
       ->needs(consistent);  // alone it would be silently ignored
+  app.add_flag("--blended-only", c->blended_only,
+               "with --consistent-blended: choose among the blended maps only (by default\nthe best fuzzy map, refined by ZoomOut, competes with them)")
+      ->needs(consistent);
   app.add_option("--threads", c->threads, "worker threads, 0 = all cores (default)")->type_name("N")->check(cli::at_least(0LL));
   app.footer(
       "Dense vertex map from shape A to shape B of a collection computed by `shapestruct fuzzy`: by default the\n"
       "best fuzzy correspondence (each vertex goes where its nearest sample's closest sample in the embedding\n"
-      "lies); --consistent-blended the blended map of the pair most consistent with the fuzzy correspondences,\n"
-      "unless it is less than --min-gain more consistent than the blended matcher's own choice.\n"
+      "lies); --consistent-blended the map of the pair most consistent with the fuzzy correspondences among the\n"
+      "blended maps and the best fuzzy map refined by ZoomOut, unless it is less than --min-gain more consistent\n"
+      "than the blended matcher's own choice.\n"
       "One 0-based target vertex id per line.");
   return [c] { return run_fuzzy_map(*c); };
 }

@@ -109,7 +109,8 @@ TEST_CASE("consistent blended map: the collection overrules the matcher only by 
   const auto r = compute_fuzzy_correspondences(c.records, aligner, fo);
   const auto match = aligner.match(0, 1);
   // gain 0 is the chapter's rule: the most consistent map, always.
-  const auto chapter = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.min_consistency_gain = 0});
+  const auto chapter = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match,
+                                                   {.min_consistency_gain = 0, .fuzzy_candidate = false});
   REQUIRE(chapter.groups.size() == chapter.consistency.size());
   REQUIRE(chapter.groups.size() >= 2);
   std::size_t best = 0;
@@ -120,8 +121,9 @@ TEST_CASE("consistent blended map: the collection overrules the matcher only by 
   CHECK(chapter.pairwise_group == match.selected);
   // With an unreachable margin the matcher's own choice stays; with the default, either choice is explained.
   const auto never = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.min_consistency_gain = 1e9});
+  CHECK_FALSE(never.fuzzy_chosen);
   CHECK(never.group == match.selected);
-  const auto by_default = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match);
+  const auto by_default = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.fuzzy_candidate = false});
   double pairwise = 0;
   for (std::size_t k = 0; k < by_default.groups.size(); ++k)
     if (by_default.groups[k] == match.selected) pairwise = by_default.consistency[k];
@@ -150,8 +152,9 @@ TEST_CASE("consistent blended map: between shapes of opposite orientation the ma
   for (index_t a = 0; a < 3; ++a)
     for (index_t b = a + 1; b < 3; ++b) {
       const auto match = aligner.match(a, b);
-      const auto oriented = make_consistent_blended_map(aligner, r.fuzzy, a, b, match, {.orientation = r.orientation});
-      const auto plain = make_consistent_blended_map(aligner, r.fuzzy, a, b, match);
+      const auto oriented = make_consistent_blended_map(aligner, r.fuzzy, a, b, match,
+                                                        {.orientation = r.orientation, .fuzzy_candidate = false});
+      const auto plain = make_consistent_blended_map(aligner, r.fuzzy, a, b, match, {.fuzzy_candidate = false});
       MESSAGE("pair " << a << "-" << b << ": orientations " << int(r.orientation[std::size_t(a)]) << ", "
                       << int(r.orientation[std::size_t(b)]) << "; matcher " << match.selected << ", without orientation "
                       << plain.group << ", with " << oriented.group);
@@ -163,4 +166,55 @@ TEST_CASE("consistent blended map: between shapes of opposite orientation the ma
   // Seen on this collection: one copy settles mirrored, and without the orientation both of its pairs take the flip.
   CHECK(repaired == 2);
   CHECK_THROWS_AS((void)make_consistent_blended_map(aligner, r.fuzzy, 0, 1, {.orientation = {1, 1}}), invalid_input);
+}
+
+TEST_CASE("consistent blended map: the refined best fuzzy map wins where every blended map is wrong") {
+  const auto c = make_creatures(3);
+  auto options = flip_telling_options();
+  options.start_from_matcher_selection = true;  // this collection then settles on the true maps (test above)
+  const intrinsic_aligner aligner(c.records, [&](index_t k) { return c.meshes[std::size_t(k)]; }, options);
+  fuzzy_collection_options fo;
+  fo.embedding.dimensions = 16;
+  fo.threads = 2;
+  const auto r = compute_fuzzy_correspondences(c.records, aligner, fo);
+  const auto match = aligner.match(0, 1);
+  REQUIRE(match.blended.size() >= 2);
+  // The same match without its true map: the matcher is left choosing among wrong ones.
+  blended_match_result<double> wrong_only = match;
+  wrong_only.blended.erase(wrong_only.blended.begin() + match.selected);
+  wrong_only.selected = 0;
+  const shape_record& ra = c.records[0];
+  const shape_record& rb = c.records[1];
+  auto right_fraction = [&](const surface_map<double>& map) {  // source samples mapped within 0.1 sqrt(area)
+    index_t right = 0;
+    for (index_t i = 0; i < ra.sample_count(); ++i) {
+      const index_t v = ra.sample_vertex[std::size_t(i)];
+      const index_t image = map.target_vertex(v), truth = c.perm[std::size_t(v)];
+      if (image != no_index &&
+          rb.sample_geodesics(rb.vertex_sample[std::size_t(image)], rb.vertex_sample[std::size_t(truth)]) < 0.1 * std::sqrt(rb.area))
+        ++right;
+    }
+    return double(right) / double(ra.sample_count());
+  };
+  const auto blended_only = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only, {.fuzzy_candidate = false});
+  CHECK_FALSE(blended_only.fuzzy_chosen);
+  CHECK(blended_only.fuzzy_consistency == -1);
+  CHECK(right_fraction(blended_only.map) < 0.5);
+  const auto with_fuzzy = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only, {.threads = 2});
+  MESSAGE("fuzzy candidate consistency " << with_fuzzy.fuzzy_consistency << ", blended " << with_fuzzy.consistency.size()
+                                         << " maps, right fraction " << right_fraction(with_fuzzy.map));
+  REQUIRE(with_fuzzy.fuzzy_chosen);
+  CHECK(with_fuzzy.group == no_index);
+  for (const double s : with_fuzzy.consistency) CHECK(with_fuzzy.fuzzy_consistency > s);
+  CHECK(right_fraction(with_fuzzy.map) >= 0.9);
+  // The chosen map is refined_fuzzy_map, whatever the thread count.
+  CHECK(refined_fuzzy_map(aligner, r.fuzzy, 0, 1, 1).nearest == with_fuzzy.map.nearest);
+  // With the true map present, the matcher's right choice stays unless the fuzzy map is clearly more consistent;
+  // either way the result is right.
+  const auto full = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match);
+  CHECK(right_fraction(full.map) >= 0.9);
+  surface_map<double> short_map;
+  short_map.points.resize(3);
+  short_map.nearest.assign(3, 0);
+  CHECK_THROWS_AS((void)aligner.score_map(0, 1, short_map), invalid_input);
 }

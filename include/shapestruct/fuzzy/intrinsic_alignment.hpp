@@ -149,36 +149,14 @@ class intrinsic_aligner {
     const auto b = prepared(target);
     const shape_record& rs = (*records_)[std::size_t(source)];
     const shape_record& rt = (*records_)[std::size_t(target)];
-    if (rs.sample_vertex.empty() || rs.sample_vertex[0] == no_index || rt.sample_geodesics.size() == 0)
-      throw invalid_input(input_error::unsupported_topology, source,
-                          "intrinsic_aligner: shapes '" + rs.name + "' and '" + rt.name +
-                              "' need geodesic samples (closed genus-0 surfaces); use the extrinsic mode");
-    const double sigma = options_.sigma_fraction * std::sqrt(rt.area);
+    check_geodesic_samples(rs, rt, source);
     pair_alignment out;
     out.source = source;
     out.target = target;
     for (std::size_t g = 0; g < r.blended.size(); ++g) {
-      const auto& map = r.blended[g].map;
-      if (map.points.empty()) continue;
-      const std::vector<double> c = detail::map_area_confidence(a->mesh, b->mesh, map, rs.sample_vertex);
-      double B = 0;
-      for (const double x : c) B += x;
-      B /= double(c.size());
-      const index_t K = rs.sample_count(), L = rt.sample_count();
-      Eigen::MatrixXf dense(K, L);
-      for (index_t i = 0; i < K; ++i) {
-        const index_t v = map.target_vertex(rs.sample_vertex[std::size_t(i)]);
-        const index_t s = v == no_index ? 0 : rt.vertex_sample[std::size_t(v)];
-        for (index_t j = 0; j < L; ++j) {
-          const double d = rt.sample_geodesics(s, j);
-          dense(i, j) = static_cast<float>(c[std::size_t(i)] * std::exp(-d * d / (sigma * sigma)) * B);
-        }
-      }
-      alignment_alternative alt;
-      alt.scores = detail::sparsify_rows(dense, options_.max_entries_per_row, options_.keep_fraction);
-      alt.global_score = B;
-      alt.parameters = {double(g)};
-      out.alternatives.push_back(std::move(alt));
+      if (r.blended[g].map.points.empty()) continue;
+      out.alternatives.push_back(alternative_of(*a, *b, rs, rt, r.blended[g].map));
+      out.alternatives.back().parameters = {double(g)};
     }
     out.initial = best_global_alternative(out.alternatives);
     for (std::size_t k = 0; k < out.alternatives.size(); ++k)
@@ -186,6 +164,30 @@ class intrinsic_aligner {
     if (options_.start_from_matcher_selection && out.preferred != no_index) out.initial = out.preferred;
     return out;
   }
+
+  /// Any map of source vertices onto the target scored as an alternative of eq. 4.4-4.5 (parameters empty), so
+  /// a map made elsewhere can compete with the blended ones. \throws as alignment_from.
+  [[nodiscard]] alignment_alternative score_map(index_t source, index_t target, const surface_map<double>& map) const {
+    const auto a = prepared(source);
+    const auto b = prepared(target);
+    const shape_record& rs = (*records_)[std::size_t(source)];
+    const shape_record& rt = (*records_)[std::size_t(target)];
+    check_geodesic_samples(rs, rt, source);
+    if (map.source_size() != a->mesh.V.rows())
+      throw invalid_input(input_error::size_mismatch, source,
+                          "intrinsic_aligner::score_map: the map has " + std::to_string(map.source_size()) +
+                              " points but shape '" + rs.name + "' has " + std::to_string(a->mesh.V.rows()) + " vertices");
+    return alternative_of(*a, *b, rs, rt, map);
+  }
+
+  /// The mesh of shape k as loaded (the numbering every map of this aligner uses); shared with the cache.
+  [[nodiscard]] std::shared_ptr<const triangle_mesh<double>> mesh(index_t k) const {
+    auto e = prepared(k);
+    return {e, &e->mesh};
+  }
+
+  /// The collection's records (the ones given at construction).
+  [[nodiscard]] const std::vector<shape_record>& records() const noexcept { return *records_; }
 
   /// ShapeAligner: every blended map of the pair as an alternative, the one with the highest B first chosen.
   [[nodiscard]] pair_alignment align(index_t source, index_t target) const {
@@ -197,6 +199,37 @@ class intrinsic_aligner {
     triangle_mesh<double> mesh;
     blended_shape<double> shape;
   };
+
+  static void check_geodesic_samples(const shape_record& rs, const shape_record& rt, index_t source) {
+    if (rs.sample_vertex.empty() || rs.sample_vertex[0] == no_index || rt.sample_geodesics.size() == 0)
+      throw invalid_input(input_error::unsupported_topology, source,
+                          "intrinsic_aligner: shapes '" + rs.name + "' and '" + rt.name +
+                              "' need geodesic samples (closed genus-0 surfaces); use the extrinsic mode");
+  }
+
+  /// One map's alternative: a(p_i, p_j) = c_m(p_i) exp(-d_geo(m(p_i), p_j)^2 / sigma^2) * B.
+  alignment_alternative alternative_of(const entry& a, const entry& b, const shape_record& rs, const shape_record& rt,
+                                       const surface_map<double>& map) const {
+    const double sigma = options_.sigma_fraction * std::sqrt(rt.area);
+    const std::vector<double> c = detail::map_area_confidence(a.mesh, b.mesh, map, rs.sample_vertex);
+    double B = 0;
+    for (const double x : c) B += x;
+    B /= double(c.size());
+    const index_t K = rs.sample_count(), L = rt.sample_count();
+    Eigen::MatrixXf dense(K, L);
+    for (index_t i = 0; i < K; ++i) {
+      const index_t v = map.target_vertex(rs.sample_vertex[std::size_t(i)]);
+      const index_t s = v == no_index ? 0 : rt.vertex_sample[std::size_t(v)];
+      for (index_t j = 0; j < L; ++j) {
+        const double d = rt.sample_geodesics(s, j);
+        dense(i, j) = static_cast<float>(c[std::size_t(i)] * std::exp(-d * d / (sigma * sigma)) * B);
+      }
+    }
+    alignment_alternative alt;
+    alt.scores = detail::sparsify_rows(dense, options_.max_entries_per_row, options_.keep_fraction);
+    alt.global_score = B;
+    return alt;
+  }
 
   std::shared_ptr<const entry> prepared(index_t k) const {
     {

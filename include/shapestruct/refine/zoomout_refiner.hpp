@@ -194,7 +194,7 @@ class zoomout_refiner {
           seeds[static_cast<std::size_t>(v)].push_back(coarse[static_cast<std::size_t>(s)]);
       }, index_t(256));
     }
-    out.map = vertex_images(b, images(Qa, K, seeds));
+    out.map = surface_map_at_vertices(b, images(Qa, K, seeds));
     return out;
   }
 
@@ -303,28 +303,6 @@ class zoomout_refiner {
       out[static_cast<std::size_t>(q)] = best;
     }, index_t(256));
     return out;
-  }
-
-  /// Surface points at the given target vertices (each at a corner of one of its faces).
-  template <class Scalar>
-  static surface_map<Scalar> vertex_images(const triangle_mesh<Scalar>& b, const std::vector<index_t>& vertices) {
-    std::vector<std::pair<index_t, int>> corner(static_cast<std::size_t>(b.V.rows()), {no_index, 0});
-    for (index_t f = 0; f < b.F.rows(); ++f)
-      for (int c = 0; c < 3; ++c)
-        if (corner[static_cast<std::size_t>(b.F(f, c))].first == no_index) corner[static_cast<std::size_t>(b.F(f, c))] = {f, c};
-    surface_map<Scalar> m;
-    m.points.resize(vertices.size());
-    m.nearest = vertices;
-    for (std::size_t i = 0; i < vertices.size(); ++i) {
-      const auto [f, c] = corner[static_cast<std::size_t>(vertices[i])];
-      if (f == no_index) {  // an isolated target vertex cannot be an image: it has no face to stand on
-        m.nearest[i] = no_index;
-        continue;
-      }
-      m.points[i].face = f;
-      m.points[i].bary[c] = Scalar(1);
-    }
-    return m;
   }
 
   zoomout_options options_{};
