@@ -2,14 +2,17 @@
 // fuzzy_maps: dense vertex maps between two shapes of a collection from its fuzzy correspondence (ch. 4.4).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "shapestruct/collection/shape_record.hpp"
+#include "shapestruct/core/concepts/map_refiner.hpp"
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/fuzzy/fuzzy_collection.hpp"
 #include "shapestruct/fuzzy/fuzzy_correspondence.hpp"
