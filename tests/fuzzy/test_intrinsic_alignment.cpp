@@ -35,6 +35,14 @@ creatures make_creatures(int count = 2) {
   return c;
 }
 
+// A 16-dimension embedding on 2 threads: plenty for three shapes.
+fuzzy_collection_options small_collection_options() {
+  fuzzy_collection_options fo;
+  fo.embedding.dimensions = 16;
+  fo.threads = 2;
+  return fo;
+}
+
 intrinsic_alignment_options flip_telling_options() {
   intrinsic_alignment_options o;
   o.matcher.shape.num_samples = 128;
@@ -103,10 +111,7 @@ TEST_CASE("consistent blended map: the collection overrules the matcher only by 
   auto options = flip_telling_options();
   options.start_from_matcher_selection = true;
   const intrinsic_aligner aligner(c.records, [&](index_t k) { return c.meshes[std::size_t(k)]; }, options);
-  fuzzy_collection_options fo;
-  fo.embedding.dimensions = 16;
-  fo.threads = 2;
-  const auto r = compute_fuzzy_correspondences(c.records, aligner, fo);
+  const auto r = compute_fuzzy_correspondences(c.records, aligner, small_collection_options());
   const auto match = aligner.match(0, 1);
   // gain 0 is the chapter's rule: the most consistent map, always.
   const auto chapter = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match,
@@ -139,9 +144,7 @@ TEST_CASE("consistent blended map: between shapes of opposite orientation the ma
   const auto c = make_creatures(3);
   // Started from B, which cannot tell the creature's front from its back: the collection may settle a copy mirrored.
   const intrinsic_aligner aligner(c.records, [&](index_t k) { return c.meshes[std::size_t(k)]; }, flip_telling_options());
-  fuzzy_collection_options fo;
-  fo.embedding.dimensions = 16;
-  fo.threads = 2;
+  auto fo = small_collection_options();
   CHECK(compute_fuzzy_correspondences(c.records, aligner, fo).orientation.empty());  // off by default
   fo.orientation_margin = 0.1;
   const auto r = compute_fuzzy_correspondences(c.records, aligner, fo);
@@ -173,10 +176,7 @@ TEST_CASE("consistent blended map: the refined best fuzzy map wins where every b
   auto options = flip_telling_options();
   options.start_from_matcher_selection = true;  // this collection then settles on the true maps (test above)
   const intrinsic_aligner aligner(c.records, [&](index_t k) { return c.meshes[std::size_t(k)]; }, options);
-  fuzzy_collection_options fo;
-  fo.embedding.dimensions = 16;
-  fo.threads = 2;
-  const auto r = compute_fuzzy_correspondences(c.records, aligner, fo);
+  const auto r = compute_fuzzy_correspondences(c.records, aligner, small_collection_options());
   const auto match = aligner.match(0, 1);
   REQUIRE(match.blended.size() >= 2);
   // The same match without its true map: the matcher is left choosing among wrong ones.
