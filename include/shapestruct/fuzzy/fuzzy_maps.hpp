@@ -89,15 +89,16 @@ struct consistent_blended_options {
   std::vector<std::int8_t> orientation{};
   /// The refined best fuzzy map (refined_fuzzy_map) competes with the blended maps, under the same margin. Where
   /// every blended map of a pair is wrong (each one flipped, say), the collection's own map can still be right
-  /// (SHREC'07: 0.887 -> 0.896 within 0.25, flipped pairs 34 -> 29; docs/fuzzy.md).
+  /// (measured in docs/fuzzy.md).
   bool fuzzy_candidate = true;
   /// Threads of the fuzzy candidate's refinement (0 = all cores).
   int threads = 0;
 };
 
-/// The consistent blended map of ch. 4.4.5: of the blended maps the blended matcher builds for (a, b), the one
-/// whose alignment scores agree best with f (the consistency score of eq. 4.10), unless it is only marginally
-/// more consistent than the matcher's own choice (consistent_blended_options).
+/// The consistent blended map of ch. 4.4.5: of the blended maps the blended matcher builds for (a, b), and of the
+/// refined best fuzzy map unless consistent_blended_options::fuzzy_candidate is off, the one whose alignment
+/// scores agree best with f (the consistency score of eq. 4.10), unless it is only marginally more consistent
+/// than the matcher's own choice (consistent_blended_options).
 struct consistent_blended_map {
   surface_map<double> map;        ///< source vertices of a -> surface points of b
   index_t group = no_index;       ///< index of the chosen blended map in the match's `blended`
@@ -110,8 +111,9 @@ struct consistent_blended_map {
   double fuzzy_consistency = -1;      ///< its score_f, or -1 when it did not compete
 };
 
-/// The consistent blended map of shapes a -> b chosen among the blended maps of `r`, a match of a -> b by
-/// `aligner` (intrinsic_aligner::match), so a caller that also wants the pairwise map matches once.
+/// The consistent blended map of shapes a -> b chosen among the blended maps of `r` (and the refined fuzzy map),
+/// `r` a match of a -> b by `aligner` (intrinsic_aligner::match), so a caller that also wants the pairwise map
+/// matches once.
 /// \throws invalid_input (bad_parameter) for a negative or non-finite min_consistency_gain, (size_mismatch) for an
 ///         orientation not of the collection's size.
 [[nodiscard]] inline consistent_blended_map make_consistent_blended_map(const intrinsic_aligner& aligner,
