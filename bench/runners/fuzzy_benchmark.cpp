@@ -31,12 +31,13 @@
 //       index against every human segmentation of the target (the source's first human segmentation is carried).
 // Options: --aligner truth (generated sets) aligns every pair by the least-squares affine map of the true landmarks,
 // the chapter's Figure 4.7 experiment; --sigma / --intrinsic-sigma set the score widths (sigma_fraction of the
-// extrinsic and intrinsic aligners); --min-gain the consistent blended map's min_consistency_gain;
-// --no-fuzzy-candidate leaves the refined best fuzzy map out of its candidates (by default the runner also scores
-// that choice as consistent_blended_only); --time, --dims,
+// extrinsic and intrinsic aligners); --min-gain and --fuzzy-min-gain the consistent blended map's
+// min_consistency_gain and fuzzy_min_gain; --no-fuzzy-candidate leaves the refined best fuzzy map out of its
+// candidates (by default the runner also scores that choice as consistent_blended_only); --time, --dims,
 // --iterations, --samples, --edges-per-shape (M) the pipeline's.
 // Writes <set>_pairs.csv (per pair and method; for shrec also shrec_groups.csv, every candidate blended map of a
-// pair with its selection features and errors), <set>_curves.dat (fraction within D, D = 0 .. 0.25) and
+// pair with its selection features and errors), <set>_choices.csv (per pair, what the consistent map chose and the
+// consistencies it chose by), <set>_curves.dat (fraction within D, D = 0 .. 0.25) and
 // appends a table to summary.md; prints per-stage times.
 #include <algorithm>
 #include <chrono>
@@ -93,7 +94,7 @@ struct tuning {
   extrinsic_alignment_options extrinsic;  ///< --sigma: its sigma_fraction
   /// --intrinsic-sigma: sigma_intrinsic(S) / sqrt(area(S)) of the intrinsic scores
   double intrinsic_sigma = intrinsic_alignment_options{}.sigma_fraction;
-  consistent_blended_options consistent;  ///< --min-gain: its min_consistency_gain
+  consistent_blended_options consistent;  ///< --min-gain, --fuzzy-min-gain: its min_consistency_gain, fuzzy_min_gain
 };
 tuning knobs;
 
@@ -191,6 +192,21 @@ void print_log(const fuzzy_collection_result& r, const std::vector<shape_record>
   }
 }
 
+/// The header and one line of <set>_choices.csv: which map the consistent blended map chose for a pair (the
+/// matcher's own choice, another blended map, or the refined fuzzy map) and the consistencies (eq. 4.10) it chose by,
+/// so that other selection rules can be studied from one run.
+constexpr const char* choices_header = "matcher_consistency,best_blended_consistency,fuzzy_consistency,chosen,opposite_orientation\n";
+void write_choice(std::ostream& out, const std::string& pair_columns, const consistent_blended_map& cb) {
+  double matcher = -1, best = -1;
+  for (std::size_t k = 0; k < cb.groups.size(); ++k) {
+    best = std::max(best, cb.consistency[k]);
+    if (cb.groups[k] == cb.pairwise_group) matcher = cb.consistency[k];
+  }
+  out << pair_columns << fmt(matcher, 4) << "," << fmt(best, 4) << "," << fmt(cb.fuzzy_consistency, 4) << ","
+      << (cb.fuzzy_chosen ? "fuzzy" : cb.group == cb.pairwise_group ? "matcher" : "blended") << ","
+      << (cb.opposite_orientation ? 1 : 0) << "\n";
+}
+
 // ---------------------------------------------------------------------------------------------- SHREC'07
 int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& classes_arg, int threads) {
   const auto pairs = read_bim_query((data / "Results" / "Corr_SHREC.query").string());
@@ -200,10 +216,12 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
   if (classes.empty())
     for (const auto& [c, v] : by_class) classes.push_back(c);
   std::ofstream csv(out_dir / "shrec_pairs.csv");
-  csv << "class,source,target,method,mean,w025,mean_flip,flipped\n";
+  csv << "class,source,target,method,mean,w025,mean_flip,flipped,w005,w010,w025_flip,points\n";
   std::ofstream groups_csv(out_dir / "shrec_groups.csv");
   groups_csv << "class,source,target,group,pairwise_selected,most_consistent,consistent_selected,consistency,area_score,"
                 "confidence_integral,convexity_mismatch,geodesic_distortion,selection_rank,w025,mean,flipped\n";
+  std::ofstream choices_csv(out_dir / "shrec_choices.csv");
+  choices_csv << "class,source,target," << choices_header;
   std::map<std::string, method_errors> total;
   std::ofstream summary(out_dir / "summary.md", std::ios::app);
   summary << "\n## SHREC'07, one intrinsic collection per class (run_fuzzy_benchmark --set shrec)\n\n"
@@ -276,7 +294,8 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
         total[method].add(e_raw, e_sym);
         csv << cls << "," << a << "," << b << "," << method << "," << fmt(mean_of(e_raw), 4) << ","
             << fmt(within(e_raw, 0.25), 3) << "," << fmt(std::min(mean_of(e_raw), mean_of(e_sym)), 4) << ","
-            << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "\n";
+            << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "," << fmt(within(e_raw, 0.05), 3) << ","
+            << fmt(within(e_raw, 0.10), 3) << "," << fmt(within(mean_of(e_sym) < mean_of(e_raw) ? e_sym : e_raw, 0.25), 3) << "," << e_raw.size() << "\n";
       };
       const blended_match_result<double> pairwise = aligner.match(ia, ib);
       consistent_blended_options oriented = knobs.consistent;
@@ -284,6 +303,7 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
       const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, oriented);
       score("pairwise", pairwise.map.nearest);
       score("consistent_blended", cb.map.nearest);
+      write_choice(choices_csv, std::to_string(cls) + "," + a + "," + b + ",", cb);
       if (!r.orientation.empty())  // the same choice without the orientation, for the comparison
         score("consistent_unoriented", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent).map.nearest);
       if (knobs.consistent.fuzzy_candidate) {  // the choice among the blended maps alone, for the comparison
@@ -402,7 +422,8 @@ void score_list_pair(intrinsic_aligner& aligner, const fuzzy_collection_result& 
                      const std::vector<shape_record>& records, index_t ia, index_t ib, const triangle_mesh<double>& B,
                      const dijkstra_geodesics<double>& geo_b, const std::vector<index_t>& points,
                      const std::vector<index_t>& truth, const std::vector<index_t>& truth_sym, const fs::path& stored,
-                     int threads, std::map<std::string, method_errors>& total, std::ostream& csv) {
+                     int threads, std::map<std::string, method_errors>& total, std::ostream& csv,
+                     std::ostream& choices) {
   const std::string& a = records[std::size_t(ia)].name;
   const std::string& b = records[std::size_t(ib)].name;
   auto score = [&](const std::string& method, const std::vector<index_t>& map_of_vertex) {
@@ -414,7 +435,9 @@ void score_list_pair(intrinsic_aligner& aligner, const fuzzy_collection_result& 
                                                           std::span<const index_t>(truth_sym), threads);
     total[method].add(e_raw, e_sym);
     csv << a << "," << b << "," << method << "," << fmt(mean_of(e_raw), 4) << "," << fmt(within(e_raw, 0.25), 3) << ","
-        << fmt(std::min(mean_of(e_raw), mean_of(e_sym)), 4) << "," << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << "\n";
+        << fmt(std::min(mean_of(e_raw), mean_of(e_sym)), 4) << "," << (mean_of(e_sym) < mean_of(e_raw) ? 1 : 0) << ","
+        << fmt(within(e_raw, 0.05), 3) << "," << fmt(within(e_raw, 0.10), 3) << "," << fmt(within(mean_of(e_sym) < mean_of(e_raw) ? e_sym : e_raw, 0.25), 3) << ","
+        << e_raw.size() << "\n";
   };
   const blended_match_result<double> pairwise = aligner.match(ia, ib);
   consistent_blended_options oriented = knobs.consistent;
@@ -422,6 +445,7 @@ void score_list_pair(intrinsic_aligner& aligner, const fuzzy_collection_result& 
   const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, oriented);
   score("pairwise", pairwise.map.nearest);
   score("consistent_blended", cb.map.nearest);
+  write_choice(choices, a + "," + b + ",", cb);
   if (!r.orientation.empty())  // the same choice without the orientation, for the comparison
     score("consistent_unoriented", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent).map.nearest);
   if (knobs.consistent.fuzzy_candidate) {  // the choice among the blended maps alone, for the comparison
@@ -470,7 +494,9 @@ int run_scape(const fs::path& data, const fs::path& out_dir, int threads) {
     const auto perm = read_bim_symmetry((data / "SCAPE/Corrs/1.sym.info").string(), static_cast<index_t>(feats.size()));
     std::map<std::string, method_errors> total;
     std::ofstream csv(out_dir / "scape_pairs.csv");
-    csv << "source,target,method,mean,w025,mean_flip,flipped\n";
+    csv << "source,target,method,mean,w025,mean_flip,flipped,w005,w010,w025_flip,points\n";
+    std::ofstream choices(out_dir / "scape_choices.csv");
+    choices << "source,target," << choices_header;
     const auto t2 = clock_type::now();
     for (const auto& pr : pairs) {
       const std::string a = pr.source.name(), b = pr.target.name();
@@ -486,7 +512,7 @@ int run_scape(const fs::path& data, const fs::path& out_dir, int threads) {
                                                 std::span<const index_t>(truth), threads);
       score_list_pair(aligner, r, records, ia, ib, B, geo_b, truth, truth, truth_sym,
                       data / "Results/Results_Corr_Scape" / ("BenchResult_BlendedMap_" + a + "_to_" + b + ".txt"), threads,
-                      total, csv);
+                      total, csv, choices);
     }
     std::ofstream summary(out_dir / "summary.md", std::ios::app);
     summary << "\n## SCAPE, the benchmark's 71 meshes as one intrinsic collection (run_fuzzy_benchmark --set scape)\n\n"
@@ -552,7 +578,9 @@ int run_cross(const std::string& set, const fs::path& data, const fs::path& out_
     auto index_of = run.index_of;
     std::map<std::string, method_errors> total;
     std::ofstream csv(out_dir / (set + "_pairs.csv"));
-    csv << "source,target,method,mean,w025,mean_flip,flipped\n";
+    csv << "source,target,method,mean,w025,mean_flip,flipped,w005,w010,w025_flip,points\n";
+    std::ofstream choices(out_dir / (set + "_choices.csv"));
+    choices << "source,target," << choices_header;
     const auto t2 = clock_type::now();
     int not_scored = 0;
     for (const auto& pr : pairs) {
@@ -587,7 +615,7 @@ int run_cross(const std::string& set, const fs::path& data, const fs::path& out_
       const dijkstra_geodesics<double> geo_b(B.V, B.F);
       score_list_pair(aligner, r, records, ia, ib, B, geo_b, src, truth, truth_sym,
                       data / "Results" / stored_dir / ("BenchResult_BlendedMap_" + a + "_to_" + b + ".txt"), threads,
-                      total, csv);
+                      total, csv, choices);
     }
     std::ofstream summary(out_dir / "summary.md", std::ios::app);
     summary << "\n## The " << set << " cross-set list (" << query << ") as one intrinsic collection (run_fuzzy_benchmark --set "
@@ -949,13 +977,14 @@ int main(int argc, char** argv) {
     else if (a == "--sigma") knobs.extrinsic.sigma_fraction = std::stod(next());
     else if (a == "--intrinsic-sigma") knobs.intrinsic_sigma = std::stod(next());
     else if (a == "--min-gain") knobs.consistent.min_consistency_gain = std::stod(next());
+    else if (a == "--fuzzy-min-gain") knobs.consistent.fuzzy_min_gain = std::stod(next());
     else if (a == "--no-fuzzy-candidate") knobs.consistent.fuzzy_candidate = false;
     else {
       std::cerr << "usage: run_fuzzy_benchmark --set shrec|scape|humans|animals|chairs|airplanes|coseg|psb --out DIR [--data DIR] [--classes 1,4] "
                    "[--count N] [--seed S] [--threads T]\n"
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--edges-per-shape M] [--no-baseline] [--weak-support F]\n"
                    "  [--orientation-margin F]\n"
-                   "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F] [--no-fuzzy-candidate]\n";
+                   "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F] [--fuzzy-min-gain F] [--no-fuzzy-candidate]\n";
       return 2;
     }
   }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Tests of intrinsic_aligner (ch. 4.3.4), every blended map kept as a scored alternative, and of the consistent
 // blended map (ch. 4.4.5) with its margin over the blended matcher's own choice.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -209,6 +210,18 @@ TEST_CASE("consistent blended map: the refined best fuzzy map wins where every b
   CHECK(right_fraction(with_fuzzy.map) >= 0.9);
   // The chosen map is refined_fuzzy_map, whatever the thread count.
   CHECK(refined_fuzzy_map(aligner, r.fuzzy, 0, 1, 1).nearest == with_fuzzy.map.nearest);
+  // fuzzy_min_gain: the fuzzy map must lead the best blended map by that fraction, else the blended maps' choice.
+  const double lead = with_fuzzy.fuzzy_consistency /
+                          *std::max_element(with_fuzzy.consistency.begin(), with_fuzzy.consistency.end()) - 1;
+  REQUIRE(lead > 0);
+  CHECK(make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only, {.fuzzy_min_gain = 0.9 * lead}).fuzzy_chosen);
+  const auto short_lead = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only, {.fuzzy_min_gain = 1.1 * lead});
+  CHECK_FALSE(short_lead.fuzzy_chosen);
+  CHECK(short_lead.fuzzy_consistency == with_fuzzy.fuzzy_consistency);
+  CHECK(short_lead.group == blended_only.group);
+  CHECK(short_lead.map.nearest == blended_only.map.nearest);
+  for (const double bad : {-0.1, std::nan("")})
+    CHECK_THROWS_AS((void)make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only, {.fuzzy_min_gain = bad}), invalid_input);
   // With the true map present, the matcher's right choice stays unless the fuzzy map is clearly more consistent;
   // either way the result is right.
   const auto full = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match);

@@ -91,6 +91,9 @@ struct consistent_blended_options {
   /// every blended map of a pair is wrong (each one flipped, say), the collection's own map can still be right
   /// (measured in docs/fuzzy.md).
   bool fuzzy_candidate = true;
+  /// ... and is chosen only when it is more consistent than every blended map by this fraction of the best one's
+  /// consistency. It maximises f point by point, so eq. 4.10 favours it over a blended map that is just as right.
+  double fuzzy_min_gain = 0;
   /// Threads of the fuzzy candidate's refinement (0 = all cores).
   int threads = 0;
 };
@@ -114,8 +117,8 @@ struct consistent_blended_map {
 /// The consistent blended map of shapes a -> b chosen among the blended maps of `r` (and the refined fuzzy map),
 /// `r` a match of a -> b by `aligner` (intrinsic_aligner::match), so a caller that also wants the pairwise map
 /// matches once.
-/// \throws invalid_input (bad_parameter) for a negative or non-finite min_consistency_gain, (size_mismatch) for an
-///         orientation not of the collection's size.
+/// \throws invalid_input (bad_parameter) for a negative or non-finite min_consistency_gain or fuzzy_min_gain,
+///         (size_mismatch) for an orientation not of the collection's size.
 [[nodiscard]] inline consistent_blended_map make_consistent_blended_map(const intrinsic_aligner& aligner,
                                                                         const fuzzy_correspondence& f, index_t a,
                                                                         index_t b, const blended_match_result<double>& r,
@@ -124,6 +127,10 @@ struct consistent_blended_map {
     throw invalid_input(input_error::bad_parameter, no_index,
                         "make_consistent_blended_map: min_consistency_gain must be finite and at least 0, got " +
                             std::to_string(options.min_consistency_gain));
+  if (!(options.fuzzy_min_gain >= 0) || !std::isfinite(options.fuzzy_min_gain))
+    throw invalid_input(input_error::bad_parameter, no_index,
+                        "make_consistent_blended_map: fuzzy_min_gain must be finite and at least 0, got " +
+                            std::to_string(options.fuzzy_min_gain));
   const auto& orientation = options.orientation;
   if (!orientation.empty() && static_cast<index_t>(orientation.size()) != f.shapes())
     throw invalid_input(input_error::size_mismatch, no_index,
@@ -149,10 +156,11 @@ struct consistent_blended_map {
     fuzzy_map = refined_fuzzy_map(aligner, f, a, b, options.threads);
     out.fuzzy_consistency = detail::consistency_score(aligner.score_map(a, b, fuzzy_map), F);
   }
-  const double top = std::max(best, out.fuzzy_consistency);
+  const bool fuzzy_competes = out.fuzzy_consistency >= 0 && out.fuzzy_consistency > (1 + options.fuzzy_min_gain) * best;
+  const double top = fuzzy_competes ? out.fuzzy_consistency : best;
   if (top < 0 || (pairwise >= 0 && top <= (1 + options.min_consistency_gain) * pairwise) || keep_matcher) {
     out.group = r.selected;
-  } else if (out.fuzzy_consistency > best) {
+  } else if (fuzzy_competes) {
     out.fuzzy_chosen = true;
     out.map = std::move(fuzzy_map);
     return out;
