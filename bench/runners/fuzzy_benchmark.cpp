@@ -95,6 +95,10 @@ struct tuning {
   /// --intrinsic-sigma: sigma_intrinsic(S) / sqrt(area(S)) of the intrinsic scores
   double intrinsic_sigma = intrinsic_alignment_options{}.sigma_fraction;
   consistent_blended_options consistent;  ///< --min-gain, --fuzzy-min-gain: its min_consistency_gain, fuzzy_min_gain
+  /// --refined-duel (shrec): also score "consistent_refined", the blended maps' choice refined by ZoomOut against
+  /// the refined fuzzy map, the more consistent of the two (both then equally precise), and that refined blended
+  /// choice alone ("blended_only_refined").
+  bool refined_duel = false;
 };
 tuning knobs;
 
@@ -312,6 +316,22 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
         score("consistent_blended_only", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, blended_only).map.nearest);
       }
       score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
+      if (knobs.refined_duel) {
+        consistent_blended_options blended_only = oriented;
+        blended_only.fuzzy_candidate = false;
+        const auto choice = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, blended_only);
+        const surface_map<double> refined =
+            zoomout_refiner{}.refine(*aligner.mesh(ia), *aligner.mesh(ib), choice.map, threads);
+        const Eigen::MatrixXd F = r.fuzzy.block(ia, ib);
+        const double refined_consistency = detail::consistency_score(aligner.score_map(ia, ib, refined), F);
+        score("blended_only_refined", refined.nearest);
+        const bool fuzzy_wins = cb.fuzzy_consistency > refined_consistency;
+        std::cout << "  duel " << a << " -> " << b << ": refined blended choice " << fmt(refined_consistency, 4)
+                  << ", refined fuzzy " << fmt(cb.fuzzy_consistency, 4) << "\n";
+        score("consistent_refined", !fuzzy_wins  ? refined.nearest
+                                    : cb.fuzzy_chosen ? cb.map.nearest
+                                                      : refined_fuzzy_map(aligner, r.fuzzy, ia, ib, threads).nearest);
+      }
       for (std::size_t k = 0; k < cb.groups.size(); ++k) {  // every candidate blended map, to study the selection
         const auto& g = pairwise.blended[std::size_t(cb.groups[k])];
         const auto [e_raw, e_sym] = errors(g.map.nearest);
@@ -978,13 +998,14 @@ int main(int argc, char** argv) {
     else if (a == "--intrinsic-sigma") knobs.intrinsic_sigma = std::stod(next());
     else if (a == "--min-gain") knobs.consistent.min_consistency_gain = std::stod(next());
     else if (a == "--fuzzy-min-gain") knobs.consistent.fuzzy_min_gain = std::stod(next());
+    else if (a == "--refined-duel") knobs.refined_duel = true;
     else if (a == "--no-fuzzy-candidate") knobs.consistent.fuzzy_candidate = false;
     else {
       std::cerr << "usage: run_fuzzy_benchmark --set shrec|scape|humans|animals|chairs|airplanes|coseg|psb --out DIR [--data DIR] [--classes 1,4] "
                    "[--count N] [--seed S] [--threads T]\n"
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--edges-per-shape M] [--no-baseline] [--weak-support F]\n"
                    "  [--orientation-margin F]\n"
-                   "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F] [--fuzzy-min-gain F] [--no-fuzzy-candidate]\n";
+                   "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F] [--fuzzy-min-gain F] [--no-fuzzy-candidate] [--refined-duel]\n";
       return 2;
     }
   }

@@ -60,6 +60,7 @@ struct fuzzy_map_command_line {
   std::string folder, a, b, out;
   bool consistent = false;
   double min_gain = consistent_blended_options{}.min_consistency_gain;
+  double fuzzy_min_gain = consistent_blended_options{}.fuzzy_min_gain;
   bool blended_only = false;
   long long threads = 0;
 };
@@ -88,7 +89,8 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
     intrinsic_aligner aligner(records, [&files](index_t k) { return read_mesh(files[std::size_t(k)]).mesh; });
     const auto cb = make_consistent_blended_map(aligner, f, a, b,
                                                 {.min_consistency_gain = c.min_gain, .orientation = collection.orientation,
-                                                 .fuzzy_candidate = !c.blended_only, .threads = int(c.threads)});
+                                                 .fuzzy_candidate = !c.blended_only, .fuzzy_min_gain = c.fuzzy_min_gain,
+                                                 .threads = int(c.threads)});
     map = cb.map.nearest;
     if (cb.fuzzy_chosen)
       std::fprintf(stderr, "fuzzy-map: the refined best fuzzy map chosen (consistency %.3g; of the %zu blended maps the "
@@ -417,9 +419,15 @@ cli::command_fn setup_fuzzy_map(CLI::App& app) {
       ->type_name("F")
       ->check(cli::at_least(0.0))
       ->needs(consistent);  // alone it would be silently ignored
-  app.add_flag("--blended-only", c->blended_only,
+  auto* blended_only = app.add_flag("--blended-only", c->blended_only,
                "with --consistent-blended: choose among the blended maps only (by default\nthe best fuzzy map, refined by ZoomOut, competes with them)")
       ->needs(consistent);
+  app.add_option("--fuzzy-min-gain", c->fuzzy_min_gain,
+                 "with --consistent-blended: how much more consistent (a fraction) the refined\nfuzzy map must be than every blended map to be chosen (default 0: whenever\nit is the most consistent)")
+      ->type_name("F")
+      ->check(cli::at_least(0.0))
+      ->needs(consistent)
+      ->excludes(blended_only);
   app.add_option("--threads", c->threads, "worker threads, 0 = all cores (default)")->type_name("N")->check(cli::at_least(0LL));
   app.footer(
       "Dense vertex map from shape A to shape B of a collection computed by `shapestruct fuzzy`: by default the\n"

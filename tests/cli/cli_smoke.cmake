@@ -99,7 +99,7 @@ get_filename_component(creature_b_stem ${creature_b} NAME_WE)
 file(STRINGS ${creature_a} creature_a_header LIMIT_COUNT 2)
 list(GET creature_a_header 1 creature_a_counts)
 string(REGEX MATCH "^[0-9]+" creature_a_vertices "${creature_a_counts}")
-foreach(variant "" "--blended-only")
+foreach(variant "" "--blended-only" "--fuzzy-min-gain;0.5")
   run_cli(0 out fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/creatures_ab.map
           --consistent-blended ${variant})
   if(NOT out MATCHES "chosen")
@@ -114,6 +114,9 @@ foreach(variant "" "--blended-only")
 endforeach()
 run_cli_error("option without the one it refines" "--blended-only requires --consistent-blended"
               fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/never.map --blended-only)
+run_cli_error("contradicting options" "--blended-only excludes --fuzzy-min-gain"
+              fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/never.map
+              --consistent-blended --blended-only --fuzzy-min-gain 0.2)
 
 run_cli(0 out generate chairs 4 -o ${WORK}/chairs --seed 7)
 file(GLOB segs ${WORK}/chairs/*.seg)
