@@ -328,7 +328,7 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
         const bool fuzzy_wins = cb.fuzzy_consistency > refined_consistency;
         std::cout << "  duel " << a << " -> " << b << ": refined blended choice " << fmt(refined_consistency, 4)
                   << ", refined fuzzy " << fmt(cb.fuzzy_consistency, 4) << "\n";
-        score("consistent_refined", !fuzzy_wins  ? refined.nearest
+        score("consistent_refined", !fuzzy_wins       ? refined.nearest
                                     : cb.fuzzy_chosen ? cb.map.nearest
                                                       : refined_fuzzy_map(aligner, r.fuzzy, ia, ib, threads).nearest);
       }
