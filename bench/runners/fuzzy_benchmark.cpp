@@ -310,16 +310,16 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
       write_choice(choices_csv, std::to_string(cls) + "," + a + "," + b + ",", cb);
       if (!r.orientation.empty())  // the same choice without the orientation, for the comparison
         score("consistent_unoriented", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent).map.nearest);
-      if (knobs.consistent.fuzzy_candidate) {  // the choice among the blended maps alone, for the comparison
+      std::optional<consistent_blended_map> blended_choice;  // the choice among the blended maps alone
+      if (knobs.consistent.fuzzy_candidate || knobs.refined_duel) {
         consistent_blended_options blended_only = oriented;
         blended_only.fuzzy_candidate = false;
-        score("consistent_blended_only", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, blended_only).map.nearest);
+        blended_choice = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, blended_only);
       }
+      if (knobs.consistent.fuzzy_candidate) score("consistent_blended_only", blended_choice->map.nearest);
       score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
       if (knobs.refined_duel) {
-        consistent_blended_options blended_only = oriented;
-        blended_only.fuzzy_candidate = false;
-        const auto choice = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, blended_only);
+        const consistent_blended_map& choice = *blended_choice;
         const surface_map<double> refined =
             zoomout_refiner{}.refine(*aligner.mesh(ia), *aligner.mesh(ib), choice.map, threads);
         const Eigen::MatrixXd F = r.fuzzy.block(ia, ib);
