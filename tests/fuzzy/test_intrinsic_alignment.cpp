@@ -222,6 +222,25 @@ TEST_CASE("consistent blended map: the refined best fuzzy map wins where every b
   CHECK(short_lead.map.nearest == blended_only.map.nearest);
   for (const double bad : {-0.1, std::nan("")})
     CHECK_THROWS_AS((void)make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only, {.fuzzy_min_gain = bad}), invalid_input);
+  // max_fuzzy_distortion_ratio: the fuzzy map must not distort geodesic distances more than that many times the
+  // most consistent blended map, else the blended maps' choice.
+  REQUIRE(with_fuzzy.most_consistent_distortion > 0);
+  CHECK(with_fuzzy.fuzzy_distortion == doctest::Approx(aligner.geodesic_distortion(0, 1, with_fuzzy.map)));
+  const double distortion_ratio = with_fuzzy.fuzzy_distortion / with_fuzzy.most_consistent_distortion;
+  MESSAGE("fuzzy map distortion " << with_fuzzy.fuzzy_distortion << ", most consistent blended map "
+                                  << with_fuzzy.most_consistent_distortion);
+  CHECK(make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only, {.max_fuzzy_distortion_ratio = 1.01 * distortion_ratio})
+            .fuzzy_chosen);
+  const auto distorted = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only,
+                                                     {.max_fuzzy_distortion_ratio = 0.99 * distortion_ratio});
+  CHECK_FALSE(distorted.fuzzy_chosen);
+  CHECK(distorted.fuzzy_distortion == with_fuzzy.fuzzy_distortion);
+  CHECK(distorted.group == blended_only.group);
+  CHECK(distorted.map.nearest == blended_only.map.nearest);
+  for (const double bad : {-1.0, std::nan("")})
+    CHECK_THROWS_AS((void)make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only, {.max_fuzzy_distortion_ratio = bad}),
+                    invalid_input);
+  CHECK_THROWS_AS((void)aligner.geodesic_distortion(0, 1, surface_map<double>{}), invalid_input);
   // With the true map present, the matcher's right choice stays unless the fuzzy map is clearly more consistent;
   // either way the result is right.
   const auto full = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match);

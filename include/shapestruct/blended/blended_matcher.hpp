@@ -20,6 +20,7 @@
 
 #include "shapestruct/blended/area_confidence.hpp"
 #include "shapestruct/blended/blended_shape.hpp"
+#include "shapestruct/blended/geodesic_distortion.hpp"
 #include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/blended/geodesic_consistency.hpp"
 #include "shapestruct/blended/triplet_candidates.hpp"
@@ -275,7 +276,7 @@ class blended_matcher {
     if (options_.refine) {
       t = clock::now();
       const surface_map<Scalar> refined = refiner_.refine(a.mesh(), b.mesh(), internal, options_.threads);
-      out.refined_distortion = geodesic_distortion(a, b, sample_images(a, b, refined.points));
+      out.refined_distortion = shapestruct::geodesic_distortion(a, b, sample_images(a, b, refined.points));
       out.refined_map = to_input_numbering(a, b, refined);
       out.refinement_accepted = !(options_.max_refined_distortion_ratio > 0) ||
                                 out.refined_distortion <= options_.max_refined_distortion_ratio * chosen.geodesic_distortion;
@@ -514,32 +515,6 @@ class blended_matcher {
     return image;
   }
 
-  /// Mean over pairs of even samples of |d_a(s, t) - d_b(f(s), f(t))| (unit-area units; blended_candidate::
-  /// geodesic_distortion), d_b read from the target's sample table through the target sample nearest to f(t).
-  static double geodesic_distortion(const blended_shape<double>& a, const blended_shape<double>& b,
-                                    const std::vector<index_t>& image) {
-    const auto& samples = a.samples();
-    const index_t ns = static_cast<index_t>(samples.size());
-    const auto& Ta = a.sample_distances();
-    const auto& Tb = b.sample_distances();
-    std::vector<index_t> image_sample(static_cast<std::size_t>(ns), 0);
-    for (index_t s = 0; s < ns; ++s)
-      if (image[static_cast<std::size_t>(s)] != no_index)
-        Tb.row(image[static_cast<std::size_t>(s)]).minCoeff(&image_sample[static_cast<std::size_t>(s)]);
-    double sum = 0;
-    std::size_t count = 0;
-    for (index_t s = 0; s < ns; ++s) {
-      const index_t vs = image[static_cast<std::size_t>(s)];
-      if (vs == no_index) continue;
-      for (index_t t = 0; t < ns; ++t) {
-        if (t == s || image[static_cast<std::size_t>(t)] == no_index) continue;
-        sum += std::abs(Ta(samples[static_cast<std::size_t>(s)], t) - Tb(vs, image_sample[static_cast<std::size_t>(t)]));
-        ++count;
-      }
-    }
-    return count > 0 ? sum / static_cast<double>(count) : 0.0;
-  }
-
   /// Integrated confidence, geodesic distortion and convexity mismatch of a blended map (see blended_candidate).
   static void sample_measures(const blended_shape<double>& a, const blended_shape<double>& b,
                               const blended_match_result<double>& r, blended_candidate<double>& bc,
@@ -559,7 +534,7 @@ class blended_matcher {
     }
     bc.confidence_integral = conf / static_cast<double>(ns);
     const std::vector<index_t> image = sample_images(a, b, pts);
-    bc.geodesic_distortion = geodesic_distortion(a, b, image);
+    bc.geodesic_distortion = shapestruct::geodesic_distortion(a, b, image);
     const auto& Ca = a.sample_convexity();
     const auto& Cb = b.sample_convexity();
     double mismatch = 0;

@@ -94,6 +94,11 @@ struct consistent_blended_options {
   /// ... and is chosen only when it is more consistent than every blended map by this fraction of the best one's
   /// consistency. It maximises f point by point, so eq. 4.10 favours it over a blended map that is just as right.
   double fuzzy_min_gain = 0;
+  /// ... and only when its geodesic distortion (intrinsic_aligner::geodesic_distortion) is at most this many
+  /// times that of the most consistent blended map: the blended matcher's own check on its refinement
+  /// (blended_matcher_options::max_refined_distortion_ratio), here against ZoomOut drifting from the fuzzy map.
+  /// 0 = no check.
+  double max_fuzzy_distortion_ratio = 0;
   /// Threads of the fuzzy candidate's refinement (0 = all cores).
   int threads = 0;
 };
@@ -112,25 +117,29 @@ struct consistent_blended_map {
   bool opposite_orientation = false;  ///< a and b sit in f the mirror way round: the matcher's choice was kept
   bool fuzzy_chosen = false;          ///< the refined best fuzzy map was chosen (`group` is then no_index)
   double fuzzy_consistency = -1;      ///< its score_f, or -1 when it did not compete
+  double fuzzy_distortion = -1;       ///< its geodesic distortion, or -1 when it did not compete
+  /// Geodesic distortion of the most consistent blended map (blended_candidate::geodesic_distortion), or -1.
+  double most_consistent_distortion = -1;
 };
 
 /// The consistent blended map of shapes a -> b chosen among the blended maps of `r` (and the refined fuzzy map),
 /// `r` a match of a -> b by `aligner` (intrinsic_aligner::match), so a caller that also wants the pairwise map
 /// matches once.
-/// \throws invalid_input (bad_parameter) for a negative or non-finite min_consistency_gain or fuzzy_min_gain,
-///         (size_mismatch) for an orientation not of the collection's size.
+/// \throws invalid_input (bad_parameter) for a negative or non-finite min_consistency_gain, fuzzy_min_gain or
+///         max_fuzzy_distortion_ratio, (size_mismatch) for an orientation not of the collection's size.
 [[nodiscard]] inline consistent_blended_map make_consistent_blended_map(const intrinsic_aligner& aligner,
                                                                         const fuzzy_correspondence& f, index_t a,
                                                                         index_t b, const blended_match_result<double>& r,
                                                                         const consistent_blended_options& options = {}) {
-  if (!(options.min_consistency_gain >= 0) || !std::isfinite(options.min_consistency_gain))
-    throw invalid_input(input_error::bad_parameter, no_index,
-                        "make_consistent_blended_map: min_consistency_gain must be finite and at least 0, got " +
-                            std::to_string(options.min_consistency_gain));
-  if (!(options.fuzzy_min_gain >= 0) || !std::isfinite(options.fuzzy_min_gain))
-    throw invalid_input(input_error::bad_parameter, no_index,
-                        "make_consistent_blended_map: fuzzy_min_gain must be finite and at least 0, got " +
-                            std::to_string(options.fuzzy_min_gain));
+  const auto require_non_negative = [](double value, const char* name) {
+    if (!(value >= 0) || !std::isfinite(value))
+      throw invalid_input(input_error::bad_parameter, no_index,
+                          std::string("make_consistent_blended_map: ") + name +
+                              " must be finite and at least 0, got " + std::to_string(value));
+  };
+  require_non_negative(options.min_consistency_gain, "min_consistency_gain");
+  require_non_negative(options.fuzzy_min_gain, "fuzzy_min_gain");
+  require_non_negative(options.max_fuzzy_distortion_ratio, "max_fuzzy_distortion_ratio");
   const auto& orientation = options.orientation;
   if (!orientation.empty() && static_cast<index_t>(orientation.size()) != f.shapes())
     throw invalid_input(input_error::size_mismatch, no_index,
@@ -155,8 +164,14 @@ struct consistent_blended_map {
   if (options.fuzzy_candidate && !keep_matcher) {
     fuzzy_map = refined_fuzzy_map(aligner, f, a, b, options.threads);
     out.fuzzy_consistency = detail::consistency_score(aligner.score_map(a, b, fuzzy_map), F);
+    out.fuzzy_distortion = aligner.geodesic_distortion(a, b, fuzzy_map);
   }
-  const bool fuzzy_competes = out.fuzzy_consistency >= 0 && out.fuzzy_consistency > (1 + options.fuzzy_min_gain) * best;
+  if (out.most_consistent_group != no_index)
+    out.most_consistent_distortion = r.blended[std::size_t(out.most_consistent_group)].geodesic_distortion;
+  const bool fuzzy_undistorted = !(options.max_fuzzy_distortion_ratio > 0) || out.most_consistent_distortion < 0 ||
+                                 out.fuzzy_distortion <= options.max_fuzzy_distortion_ratio * out.most_consistent_distortion;
+  const bool fuzzy_competes = out.fuzzy_consistency >= 0 && fuzzy_undistorted &&
+                              out.fuzzy_consistency > (1 + options.fuzzy_min_gain) * best;
   const double top = fuzzy_competes ? out.fuzzy_consistency : best;
   if (top < 0 || (pairwise >= 0 && top <= (1 + options.min_consistency_gain) * pairwise) || keep_matcher) {
     out.group = r.selected;

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+#include <algorithm>
+#include <numeric>
+#include <vector>
+
+#include <doctest/doctest.h>
+
+#include "blended_fixtures.hpp"
+#include "shapestruct/blended/blended_matcher.hpp"
+#include "shapestruct/blended/geodesic_distortion.hpp"
+#include "shapestruct/maps/surface_map.hpp"
+#include "support/fixtures.hpp"
+
+using namespace shapestruct;
+
+namespace {
+blended_matcher_options small_options() {
+  blended_matcher_options o;
+  o.shape.num_samples = 128;
+  o.threads = 2;
+  o.full_maps_for_all_groups = true;  // every group's map, to compare with its recorded distortion
+  return o;
+}
+}  // namespace
+
+TEST_CASE("geodesic distortion: zero for the identity, small for an isometry, large for a scrambled map") {
+  const auto m = test::armed_sphere(3);
+  std::vector<index_t> perm;
+  const auto moved = test::moved_and_permuted(m, perm);
+  const blended_matcher<> matcher(small_options());
+  const auto a = matcher.prepare(m);
+  const auto b = matcher.prepare(moved);
+  std::vector<index_t> identity(static_cast<std::size_t>(m.V.rows()));
+  std::iota(identity.begin(), identity.end(), index_t(0));
+  CHECK(input_map_geodesic_distortion(a, a, surface_map_at_vertices(m, identity)) == doctest::Approx(0.0));
+  // The true map of a rigid copy: only the reading of d_b through b's nearest sample (its covering radius) is left.
+  const double truth = input_map_geodesic_distortion(a, b, surface_map_at_vertices(moved, perm));
+  std::vector<index_t> scrambled = perm;
+  std::reverse(scrambled.begin(), scrambled.end());
+  const double wrong = input_map_geodesic_distortion(a, b, surface_map_at_vertices(moved, scrambled));
+  MESSAGE("true map " << truth << ", scrambled " << wrong);
+  CHECK(truth < 0.05);
+  CHECK(wrong > 5 * truth);
+  // Unmapped images are left out, not read as vertex 0.
+  auto partial = surface_map_at_vertices(moved, perm);
+  std::fill(partial.nearest.begin(), partial.nearest.begin() + partial.nearest.size() / 2, no_index);
+  CHECK(input_map_geodesic_distortion(a, b, partial) < 0.05);
+}
+
+TEST_CASE("geodesic distortion of a blended map in the input numbering is the matcher's own measure") {
+  const auto m = test::armed_sphere(3);
+  std::vector<index_t> perm;
+  const auto moved = test::moved_and_permuted(m, perm);
+  const blended_matcher<> matcher(small_options());
+  const auto r = matcher.match(m, moved);
+  const auto a = matcher.prepare(m);
+  const auto b = matcher.prepare(moved);
+  REQUIRE(r.blended.size() >= 1);
+  for (const auto& g : r.blended) {
+    REQUIRE(g.map.source_size() == m.V.rows());
+    CHECK(input_map_geodesic_distortion(a, b, g.map) == doctest::Approx(g.geodesic_distortion));
+  }
+}
