@@ -1,11 +1,15 @@
 #!/usr/bin/env python3
-"""What the consistent map would score under other fuzzy_min_gain margins, from one run of run_fuzzy_benchmark.
+"""What the consistent map would score under other fuzzy_min_gain margins, max_fuzzy_distortion_ratio limits and
+fuzzy_min_distance thresholds, from one run of run_fuzzy_benchmark.
 
-Usage: scripts/fuzzy_min_gain_study.py SET_pairs.csv SET_choices.csv [MARGINS] [--vts DIR]
+Usage: scripts/fuzzy_min_gain_study.py SET_pairs.csv SET_choices.csv [MARGINS] [--ratios R1,R2] [--distances D1,D2]
+       [--vts DIR]
 
 Both files come from the same run (the same f). Where the refined fuzzy map was chosen but would not lead the best
 blended map by the margin, the consistent map is the blended maps' own choice (the consistent_blended_only rows),
-so every margin at or above the run's own is scored exactly. Pairs are weighted by their number of evaluation
+so every margin at or above the run's own is scored exactly; likewise every distortion limit (--ratios) below the
+run's own and every distance threshold (--distances) above it, from the choices file's distortion and distance
+columns. Pairs are weighted by their number of evaluation
 points (the `points` column; for SHREC'07 files written before that column, the smaller of the two shapes' .vts
 counts, read from --vts DIR, the benchmark's watertight_shrec07/Corrs).
 """
@@ -20,6 +24,8 @@ def main():
     ap.add_argument("pairs")
     ap.add_argument("choices")
     ap.add_argument("margins", nargs="?", default="0,0.02,0.05,0.1,0.15,0.2,0.3,0.5")
+    ap.add_argument("--ratios", default="", help="max_fuzzy_distortion_ratio limits to score, e.g. 1,1.25,1.5")
+    ap.add_argument("--distances", default="", help="fuzzy_min_distance thresholds to score, e.g. 0.02,0.05")
     ap.add_argument("--vts", default=os.path.join(os.environ.get("SHAPESTRUCT_DATA", ""), "watertight_shrec07", "Corrs"))
     args = ap.parse_args()
 
@@ -67,6 +73,25 @@ def main():
             return "consistent_blended" if leads else "consistent_blended_only"
         chosen = sum(1 for k in methods if choices[k]["chosen"] == "fuzzy" and pick(k) == "consistent_blended")
         print(f"fuzzy_min_gain {margin}: {pooled(pick)}; fuzzy map chosen on {chosen} pairs")
+    for ratio in (float(r) for r in args.ratios.split(",") if r):
+        def pick(k, ratio=ratio):
+            c = choices[k]
+            if c["chosen"] != "fuzzy":
+                return "consistent_blended"
+            blended = float(c["most_consistent_distortion"])
+            undistorted = blended < 0 or float(c["fuzzy_distortion"]) <= ratio * blended
+            return "consistent_blended" if undistorted else "consistent_blended_only"
+        chosen = sum(1 for k in methods if choices[k]["chosen"] == "fuzzy" and pick(k) == "consistent_blended")
+        print(f"max_fuzzy_distortion_ratio {ratio}: {pooled(pick)}; fuzzy map chosen on {chosen} pairs")
+    for threshold in (float(d) for d in args.distances.split(",") if d):
+        def pick(k, threshold=threshold):
+            c = choices[k]
+            if c["chosen"] != "fuzzy":
+                return "consistent_blended"
+            distance = float(c["fuzzy_distance"])
+            return "consistent_blended" if distance < 0 or distance >= threshold else "consistent_blended_only"
+        chosen = sum(1 for k in methods if choices[k]["chosen"] == "fuzzy" and pick(k) == "consistent_blended")
+        print(f"fuzzy_min_distance {threshold}: {pooled(pick)}; fuzzy map chosen on {chosen} pairs")
 
 
 if __name__ == "__main__":

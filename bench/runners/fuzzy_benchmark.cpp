@@ -31,13 +31,14 @@
 //       index against every human segmentation of the target (the source's first human segmentation is carried).
 // Options: --aligner truth (generated sets) aligns every pair by the least-squares affine map of the true landmarks,
 // the chapter's Figure 4.7 experiment; --sigma / --intrinsic-sigma set the score widths (sigma_fraction of the
-// extrinsic and intrinsic aligners); --min-gain, --fuzzy-min-gain and --max-fuzzy-distortion the consistent blended
-// map's min_consistency_gain, fuzzy_min_gain and max_fuzzy_distortion_ratio; --no-fuzzy-candidate leaves the refined best fuzzy map out of its
+// extrinsic and intrinsic aligners); --min-gain, --fuzzy-min-gain, --max-fuzzy-distortion and --fuzzy-min-distance
+// the consistent blended map's min_consistency_gain, fuzzy_min_gain, max_fuzzy_distortion_ratio and
+// fuzzy_min_distance; --no-fuzzy-candidate leaves the refined best fuzzy map out of its
 // candidates (by default the runner also scores that choice as consistent_blended_only); --time, --dims,
 // --iterations, --samples, --edges-per-shape (M) the pipeline's.
 // Writes <set>_pairs.csv (per pair and method; for shrec also shrec_groups.csv, every candidate blended map of a
 // pair with its selection features and errors), <set>_choices.csv (per pair, what the consistent map chose and the
-// consistencies and geodesic distortions it chose by), <set>_curves.dat (fraction within D, D = 0 .. 0.25) and
+// consistencies, distortions and distances it chose by), <set>_curves.dat (fraction within D, D = 0 .. 0.25) and
 // appends a table to summary.md; prints per-stage times.
 #include <algorithm>
 #include <chrono>
@@ -94,7 +95,7 @@ struct tuning {
   extrinsic_alignment_options extrinsic;  ///< --sigma: its sigma_fraction
   /// --intrinsic-sigma: sigma_intrinsic(S) / sqrt(area(S)) of the intrinsic scores
   double intrinsic_sigma = intrinsic_alignment_options{}.sigma_fraction;
-  consistent_blended_options consistent;  ///< --min-gain, --fuzzy-min-gain, --max-fuzzy-distortion
+  consistent_blended_options consistent;  ///< --min-gain, --fuzzy-min-gain, --max-fuzzy-distortion, --fuzzy-min-distance
   /// --refined-duel (shrec): also score "consistent_refined", the blended maps' choice refined by ZoomOut against
   /// the refined fuzzy map, the more consistent of the two (both then equally precise), and that refined blended
   /// choice alone ("blended_only_refined").
@@ -198,11 +199,11 @@ void print_log(const fuzzy_collection_result& r, const std::vector<shape_record>
 
 /// The header and one line of <set>_choices.csv: which map the consistent blended map chose for a pair (the
 /// matcher's own choice, another blended map, or the refined fuzzy map), the consistencies (eq. 4.10) it chose by
-/// and the geodesic distortions of the refined fuzzy map and of the most consistent blended map, so that other
-/// selection rules can be studied from one run.
+/// the geodesic distortions of the refined fuzzy map and of the most consistent blended map, and the mean distance
+/// between their images, so that other selection rules can be studied from one run.
 constexpr const char* choices_header =
     "matcher_consistency,best_blended_consistency,fuzzy_consistency,chosen,opposite_orientation,fuzzy_distortion,"
-    "most_consistent_distortion\n";
+    "most_consistent_distortion,fuzzy_distance\n";
 void write_choice(std::ostream& out, const std::string& pair_columns, const consistent_blended_map& cb) {
   double matcher = -1, best = -1;
   for (std::size_t k = 0; k < cb.groups.size(); ++k) {
@@ -212,7 +213,7 @@ void write_choice(std::ostream& out, const std::string& pair_columns, const cons
   out << pair_columns << fmt(matcher, 4) << "," << fmt(best, 4) << "," << fmt(cb.fuzzy_consistency, 4) << ","
       << (cb.fuzzy_chosen ? "fuzzy" : cb.group == cb.pairwise_group ? "matcher" : "blended") << ","
       << (cb.opposite_orientation ? 1 : 0) << "," << fmt(cb.fuzzy_distortion, 5) << ","
-      << fmt(cb.most_consistent_distortion, 5) << "\n";
+      << fmt(cb.most_consistent_distortion, 5) << "," << fmt(cb.fuzzy_distance, 5) << "\n";
 }
 
 // ---------------------------------------------------------------------------------------------- SHREC'07
@@ -1003,6 +1004,7 @@ int main(int argc, char** argv) {
     else if (a == "--min-gain") knobs.consistent.min_consistency_gain = std::stod(next());
     else if (a == "--fuzzy-min-gain") knobs.consistent.fuzzy_min_gain = std::stod(next());
     else if (a == "--max-fuzzy-distortion") knobs.consistent.max_fuzzy_distortion_ratio = std::stod(next());
+    else if (a == "--fuzzy-min-distance") knobs.consistent.fuzzy_min_distance = std::stod(next());
     else if (a == "--refined-duel") knobs.refined_duel = true;
     else if (a == "--no-fuzzy-candidate") knobs.consistent.fuzzy_candidate = false;
     else {
@@ -1010,7 +1012,7 @@ int main(int argc, char** argv) {
                    "[--count N] [--seed S] [--threads T]\n"
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--edges-per-shape M] [--no-baseline] [--weak-support F]\n"
                    "  [--orientation-margin F]\n"
-                   "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F] [--fuzzy-min-gain F] [--max-fuzzy-distortion R] [--no-fuzzy-candidate] [--refined-duel]\n";
+                   "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F] [--fuzzy-min-gain F] [--max-fuzzy-distortion R] [--fuzzy-min-distance D] [--no-fuzzy-candidate] [--refined-duel]\n";
       return 2;
     }
   }

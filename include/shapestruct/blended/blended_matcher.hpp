@@ -20,7 +20,7 @@
 
 #include "shapestruct/blended/area_confidence.hpp"
 #include "shapestruct/blended/blended_shape.hpp"
-#include "shapestruct/blended/geodesic_distortion.hpp"
+#include "shapestruct/blended/sample_map_measures.hpp"
 #include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/blended/geodesic_consistency.hpp"
 #include "shapestruct/blended/triplet_candidates.hpp"

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "shapestruct/blended/sample_map_measures.hpp"
 #include "shapestruct/collection/shape_record.hpp"
 #include "shapestruct/core/concepts/map_refiner.hpp"
 #include "shapestruct/core/errors.hpp"
@@ -94,11 +95,15 @@ struct consistent_blended_options {
   /// ... and is chosen only when it is more consistent than every blended map by this fraction of the best one's
   /// consistency. It maximises f point by point, so eq. 4.10 favours it over a blended map that is just as right.
   double fuzzy_min_gain = 0;
-  /// ... and only when its geodesic distortion (intrinsic_aligner::geodesic_distortion) is at most this many
-  /// times that of the most consistent blended map: the blended matcher's own check on its refinement
+  /// ... and only when its geodesic distortion (input_map_geodesic_distortion) is at most this many times that of
+  /// the most consistent blended map: the blended matcher's own check on its refinement
   /// (blended_matcher_options::max_refined_distortion_ratio), here against ZoomOut drifting from the fuzzy map.
   /// 0 = no check.
   double max_fuzzy_distortion_ratio = 0;
+  /// ... and only when its images lie on average at least this far (mean_image_distance, unit-area units) from
+  /// those of the most consistent blended map. Closer, the two are one map up to local precision, and the
+  /// blended map, built from the shapes' own features, is the more precise of them. 0 = no check.
+  double fuzzy_min_distance = 0;
   /// Threads of the fuzzy candidate's refinement (0 = all cores).
   int threads = 0;
 };
@@ -118,6 +123,8 @@ struct consistent_blended_map {
   bool fuzzy_chosen = false;          ///< the refined best fuzzy map was chosen (`group` is then no_index)
   double fuzzy_consistency = -1;      ///< its score_f, or -1 when it did not compete
   double fuzzy_distortion = -1;       ///< its geodesic distortion, or -1 when it did not compete
+  /// The mean distance between its images and the most consistent blended map's (mean_image_distance), or -1.
+  double fuzzy_distance = -1;
   /// Geodesic distortion of the most consistent blended map (blended_candidate::geodesic_distortion), or -1.
   double most_consistent_distortion = -1;
 };
@@ -125,8 +132,8 @@ struct consistent_blended_map {
 /// The consistent blended map of shapes a -> b chosen among the blended maps of `r` (and the refined fuzzy map),
 /// `r` a match of a -> b by `aligner` (intrinsic_aligner::match), so a caller that also wants the pairwise map
 /// matches once.
-/// \throws invalid_input (bad_parameter) for a negative or non-finite min_consistency_gain, fuzzy_min_gain or
-///         max_fuzzy_distortion_ratio, (size_mismatch) for an orientation not of the collection's size.
+/// \throws invalid_input (bad_parameter) for a negative or non-finite min_consistency_gain, fuzzy_min_gain,
+///         max_fuzzy_distortion_ratio or fuzzy_min_distance, (size_mismatch) for an orientation not of the collection's size.
 [[nodiscard]] inline consistent_blended_map make_consistent_blended_map(const intrinsic_aligner& aligner,
                                                                         const fuzzy_correspondence& f, index_t a,
                                                                         index_t b, const blended_match_result<double>& r,
@@ -140,6 +147,7 @@ struct consistent_blended_map {
   require_non_negative(options.min_consistency_gain, "min_consistency_gain");
   require_non_negative(options.fuzzy_min_gain, "fuzzy_min_gain");
   require_non_negative(options.max_fuzzy_distortion_ratio, "max_fuzzy_distortion_ratio");
+  require_non_negative(options.fuzzy_min_distance, "fuzzy_min_distance");
   const auto& orientation = options.orientation;
   if (!orientation.empty() && static_cast<index_t>(orientation.size()) != f.shapes())
     throw invalid_input(input_error::size_mismatch, no_index,
@@ -164,13 +172,19 @@ struct consistent_blended_map {
   if (options.fuzzy_candidate && !keep_matcher) {
     fuzzy_map = refined_fuzzy_map(aligner, f, a, b, options.threads);
     out.fuzzy_consistency = detail::consistency_score(aligner.score_map(a, b, fuzzy_map), F);
-    out.fuzzy_distortion = aligner.geodesic_distortion(a, b, fuzzy_map);
+    const auto shape_a = aligner.prepared_shape(a);
+    const auto shape_b = aligner.prepared_shape(b);
+    out.fuzzy_distortion = input_map_geodesic_distortion(*shape_a, *shape_b, fuzzy_map);
+    if (out.most_consistent_group != no_index) {
+      const auto& blended = r.blended[std::size_t(out.most_consistent_group)];
+      out.most_consistent_distortion = blended.geodesic_distortion;
+      out.fuzzy_distance = mean_image_distance(*shape_a, *shape_b, fuzzy_map, blended.map);
+    }
   }
-  if (out.most_consistent_group != no_index)
-    out.most_consistent_distortion = r.blended[std::size_t(out.most_consistent_group)].geodesic_distortion;
   const bool fuzzy_undistorted = !(options.max_fuzzy_distortion_ratio > 0) || out.most_consistent_distortion < 0 ||
                                  out.fuzzy_distortion <= options.max_fuzzy_distortion_ratio * out.most_consistent_distortion;
-  const bool fuzzy_competes = out.fuzzy_consistency >= 0 && fuzzy_undistorted &&
+  const bool fuzzy_distinct = out.fuzzy_distance < 0 || out.fuzzy_distance >= options.fuzzy_min_distance;
+  const bool fuzzy_competes = out.fuzzy_consistency >= 0 && fuzzy_undistorted && fuzzy_distinct &&
                               out.fuzzy_consistency > (1 + options.fuzzy_min_gain) * best;
   const double top = fuzzy_competes ? out.fuzzy_consistency : best;
   if (top < 0 || (pairwise >= 0 && top <= (1 + options.min_consistency_gain) * pairwise) || keep_matcher) {

@@ -20,7 +20,7 @@
 #include <Eigen/SparseCore>
 
 #include "shapestruct/blended/blended_matcher.hpp"
-#include "shapestruct/blended/geodesic_distortion.hpp"
+#include "shapestruct/blended/sample_map_measures.hpp"
 #include "shapestruct/collection/pair_alignment.hpp"
 #include "shapestruct/collection/shape_record.hpp"
 #include "shapestruct/core/errors.hpp"
@@ -181,17 +181,11 @@ class intrinsic_aligner {
     return alternative_of(*a, *b, rs, rt, map);
   }
 
-  /// Geodesic distortion of a map of source vertices onto the target (input_map_geodesic_distortion; the
-  /// blended matcher's blended_candidate::geodesic_distortion for its own maps). \throws as score_map.
-  [[nodiscard]] double geodesic_distortion(index_t source, index_t target, const surface_map<double>& map) const {
-    const auto a = prepared(source);
-    const auto b = prepared(target);
-    if (map.source_size() != a->mesh.V.rows())
-      throw invalid_input(input_error::size_mismatch, source,
-                          "intrinsic_aligner::geodesic_distortion: the map has " + std::to_string(map.source_size()) +
-                              " points but shape '" + (*records_)[std::size_t(source)].name + "' has " +
-                              std::to_string(a->mesh.V.rows()) + " vertices");
-    return input_map_geodesic_distortion(a->shape, b->shape, map);
+  /// Shape k prepared for the blended matcher (unit area, samples, sample distances), for measures of maps
+  /// between prepared shapes (sample_map_measures.hpp); shared with the cache.
+  [[nodiscard]] std::shared_ptr<const blended_shape<double>> prepared_shape(index_t k) const {
+    auto e = prepared(k);
+    return {e, &e->shape};
   }
 
   /// The mesh of shape k as loaded (the numbering every map of this aligner uses); shared with the cache.

@@ -7,7 +7,7 @@
 
 #include "blended_fixtures.hpp"
 #include "shapestruct/blended/blended_matcher.hpp"
-#include "shapestruct/blended/geodesic_distortion.hpp"
+#include "shapestruct/blended/sample_map_measures.hpp"
 #include "shapestruct/maps/surface_map.hpp"
 #include "support/fixtures.hpp"
 
@@ -45,6 +45,29 @@ TEST_CASE("geodesic distortion: zero for the identity, small for an isometry, la
   auto partial = surface_map_at_vertices(moved, perm);
   std::fill(partial.nearest.begin(), partial.nearest.begin() + partial.nearest.size() / 2, no_index);
   CHECK(input_map_geodesic_distortion(a, b, partial) < 0.05);
+}
+
+TEST_CASE("mean image distance: near zero for one map, large for a map and its scrambling, symmetric in use") {
+  const auto m = test::armed_sphere(3);
+  std::vector<index_t> perm;
+  const auto moved = test::moved_and_permuted(m, perm);
+  const blended_matcher<> matcher(small_options());
+  const auto a = matcher.prepare(m);
+  const auto b = matcher.prepare(moved);
+  const auto truth = surface_map_at_vertices(moved, perm);
+  std::vector<index_t> scrambled = perm;
+  std::reverse(scrambled.begin(), scrambled.end());
+  const auto wrong = surface_map_at_vertices(moved, scrambled);
+  const double same = mean_image_distance(a, b, truth, truth);
+  const double apart = mean_image_distance(a, b, truth, wrong);
+  MESSAGE("same map " << same << ", scrambled " << apart);
+  CHECK(same < 0.05);  // the distance to the image's nearest sample only
+  CHECK(apart > 0.3);  // unit area: a sphere of area 1 has a diameter of about 0.89
+  CHECK(mean_image_distance(a, b, wrong, truth) == doctest::Approx(apart).epsilon(0.1));
+  // Samples either map leaves unmapped do not count.
+  auto none = truth;
+  std::fill(none.nearest.begin(), none.nearest.end(), no_index);
+  CHECK(mean_image_distance(a, b, truth, none) == 0.0);
 }
 
 TEST_CASE("geodesic distortion of a blended map in the input numbering is the matcher's own measure") {
