@@ -63,36 +63,30 @@ def main():
             text += f", within 0.05 {w005 / total:.4f}, within 0.10 {w010 / total:.4f}, with flips {flips / total:.4f}"
         return text
 
-    print("blended maps only:", pooled(lambda k: "consistent_blended_only"))
-    for margin in (float(m) for m in args.margins.split(",")):
-        def pick(k, margin=margin):
+    def report(label, fuzzy_kept):
+        """Scores the rule that keeps the run's fuzzy choice of a pair only where fuzzy_kept(choice row) holds."""
+        def pick(k):
             c = choices[k]
-            if c["chosen"] != "fuzzy":
+            if c["chosen"] != "fuzzy" or fuzzy_kept(c):
                 return "consistent_blended"
-            leads = float(c["fuzzy_consistency"]) > (1 + margin) * float(c["best_blended_consistency"])
-            return "consistent_blended" if leads else "consistent_blended_only"
+            return "consistent_blended_only"
         chosen = sum(1 for k in methods if choices[k]["chosen"] == "fuzzy" and pick(k) == "consistent_blended")
-        print(f"fuzzy_min_gain {margin}: {pooled(pick)}; fuzzy map chosen on {chosen} pairs")
-    for ratio in (float(r) for r in args.ratios.split(",") if r):
-        def pick(k, ratio=ratio):
-            c = choices[k]
-            if c["chosen"] != "fuzzy":
-                return "consistent_blended"
-            blended = float(c["most_consistent_distortion"])
-            undistorted = blended < 0 or float(c["fuzzy_distortion"]) <= ratio * blended
-            return "consistent_blended" if undistorted else "consistent_blended_only"
-        chosen = sum(1 for k in methods if choices[k]["chosen"] == "fuzzy" and pick(k) == "consistent_blended")
-        print(f"max_fuzzy_distortion_ratio {ratio}: {pooled(pick)}; fuzzy map chosen on {chosen} pairs")
-    for threshold in (float(d) for d in args.distances.split(",") if d):
-        def pick(k, threshold=threshold):
-            c = choices[k]
-            if c["chosen"] != "fuzzy":
-                return "consistent_blended"
-            distance = float(c["fuzzy_distance"])
-            return "consistent_blended" if distance < 0 or distance >= threshold else "consistent_blended_only"
-        chosen = sum(1 for k in methods if choices[k]["chosen"] == "fuzzy" and pick(k) == "consistent_blended")
-        print(f"fuzzy_min_distance {threshold}: {pooled(pick)}; fuzzy map chosen on {chosen} pairs")
+        print(f"{label}: {pooled(pick)}; fuzzy map chosen on {chosen} pairs")
 
+    def values(text):
+        return [float(v) for v in text.split(",") if v]
+
+    print("blended maps only:", pooled(lambda k: "consistent_blended_only"))
+    for margin in values(args.margins):
+        report(f"fuzzy_min_gain {margin}", lambda c, margin=margin:
+               float(c["fuzzy_consistency"]) > (1 + margin) * float(c["best_blended_consistency"]))
+    for ratio in values(args.ratios):
+        report(f"max_fuzzy_distortion_ratio {ratio}", lambda c, ratio=ratio:
+               float(c["most_consistent_distortion"]) < 0
+               or float(c["fuzzy_distortion"]) <= ratio * float(c["most_consistent_distortion"]))
+    for threshold in values(args.distances):
+        report(f"fuzzy_min_distance {threshold}", lambda c, threshold=threshold:
+               float(c["fuzzy_distance"]) < 0 or float(c["fuzzy_distance"]) >= threshold)
 
 if __name__ == "__main__":
     main()

@@ -21,15 +21,21 @@ blended_matcher_options small_options() {
   o.full_maps_for_all_groups = true;  // every group's map, to compare with its recorded distortion
   return o;
 }
+
+/// A shape, its rigidly moved and vertex-permuted copy (perm: source vertex -> its copy), both prepared.
+struct moved_pair {
+  triangle_mesh<double> source = test::armed_sphere(3);
+  std::vector<index_t> perm;
+  triangle_mesh<double> target = test::moved_and_permuted(source, perm);
+  blended_matcher<> matcher{small_options()};
+  blended_shape<double> a = matcher.prepare(source);
+  blended_shape<double> b = matcher.prepare(target);
+};
 }  // namespace
 
 TEST_CASE("geodesic distortion: zero for the identity, small for an isometry, large for a scrambled map") {
-  const auto m = test::armed_sphere(3);
-  std::vector<index_t> perm;
-  const auto moved = test::moved_and_permuted(m, perm);
-  const blended_matcher<> matcher(small_options());
-  const auto a = matcher.prepare(m);
-  const auto b = matcher.prepare(moved);
+  const moved_pair p;
+  const auto& [m, perm, moved, matcher, a, b] = p;
   std::vector<index_t> identity(static_cast<std::size_t>(m.V.rows()));
   std::iota(identity.begin(), identity.end(), index_t(0));
   CHECK(input_map_geodesic_distortion(a, a, surface_map_at_vertices(m, identity)) == doctest::Approx(0.0));
@@ -48,12 +54,8 @@ TEST_CASE("geodesic distortion: zero for the identity, small for an isometry, la
 }
 
 TEST_CASE("mean image distance: near zero for one map, large for a map and its scrambling, symmetric in use") {
-  const auto m = test::armed_sphere(3);
-  std::vector<index_t> perm;
-  const auto moved = test::moved_and_permuted(m, perm);
-  const blended_matcher<> matcher(small_options());
-  const auto a = matcher.prepare(m);
-  const auto b = matcher.prepare(moved);
+  const moved_pair p;
+  const auto& [m, perm, moved, matcher, a, b] = p;
   const auto truth = surface_map_at_vertices(moved, perm);
   std::vector<index_t> scrambled = perm;
   std::reverse(scrambled.begin(), scrambled.end());
@@ -71,13 +73,9 @@ TEST_CASE("mean image distance: near zero for one map, large for a map and its s
 }
 
 TEST_CASE("geodesic distortion of a blended map in the input numbering is the matcher's own measure") {
-  const auto m = test::armed_sphere(3);
-  std::vector<index_t> perm;
-  const auto moved = test::moved_and_permuted(m, perm);
-  const blended_matcher<> matcher(small_options());
+  const moved_pair p;
+  const auto& [m, perm, moved, matcher, a, b] = p;
   const auto r = matcher.match(m, moved);
-  const auto a = matcher.prepare(m);
-  const auto b = matcher.prepare(moved);
   REQUIRE(r.blended.size() >= 1);
   for (const auto& g : r.blended) {
     REQUIRE(g.map.source_size() == m.V.rows());
