@@ -95,7 +95,8 @@ struct tuning {
   extrinsic_alignment_options extrinsic;  ///< --sigma: its sigma_fraction
   /// --intrinsic-sigma: sigma_intrinsic(S) / sqrt(area(S)) of the intrinsic scores
   double intrinsic_sigma = intrinsic_alignment_options{}.sigma_fraction;
-  consistent_blended_options consistent;  ///< --min-gain, --fuzzy-min-gain, --max-fuzzy-distortion, --fuzzy-min-distance
+  /// --min-gain, --fuzzy-min-gain, --max-fuzzy-distortion, --fuzzy-min-distance
+  consistent_blended_options consistent;
   /// --refined-duel (shrec): also score "consistent_refined", the blended maps' choice refined by ZoomOut against
   /// the refined fuzzy map, the more consistent of the two (both then equally precise), and that refined blended
   /// choice alone ("blended_only_refined").
@@ -1012,7 +1013,8 @@ int main(int argc, char** argv) {
                    "[--count N] [--seed S] [--threads T]\n"
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--edges-per-shape M] [--no-baseline] [--weak-support F]\n"
                    "  [--orientation-margin F]\n"
-                   "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F] [--fuzzy-min-gain F] [--max-fuzzy-distortion R] [--fuzzy-min-distance D] [--no-fuzzy-candidate] [--refined-duel]\n";
+                   "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F] [--fuzzy-min-gain F]\n"
+                   "  [--max-fuzzy-distortion R] [--fuzzy-min-distance D] [--no-fuzzy-candidate] [--refined-duel]\n";
       return 2;
     }
   }

@@ -225,12 +225,15 @@ TEST_CASE("consistent blended map: the refined best fuzzy map wins where every b
   // max_fuzzy_distortion_ratio: the fuzzy map must not distort geodesic distances more than that many times the
   // most consistent blended map, else the blended maps' choice.
   REQUIRE(with_fuzzy.most_consistent_distortion > 0);
-  CHECK(with_fuzzy.fuzzy_distortion ==
-        doctest::Approx(input_map_geodesic_distortion(*aligner.prepared_shape(0), *aligner.prepared_shape(1), with_fuzzy.map)));
+  const auto shape0 = aligner.prepared_shape(0);
+  const auto shape1 = aligner.prepared_shape(1);
+  const double fuzzy_distortion = input_map_geodesic_distortion(*shape0, *shape1, with_fuzzy.map);
+  CHECK(with_fuzzy.fuzzy_distortion == doctest::Approx(fuzzy_distortion));
   const double distortion_ratio = with_fuzzy.fuzzy_distortion / with_fuzzy.most_consistent_distortion;
   MESSAGE("fuzzy map distortion " << with_fuzzy.fuzzy_distortion << ", most consistent blended map "
                                   << with_fuzzy.most_consistent_distortion);
-  CHECK(make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only, {.max_fuzzy_distortion_ratio = 1.01 * distortion_ratio})
+  CHECK(make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only,
+                                    {.max_fuzzy_distortion_ratio = 1.01 * distortion_ratio})
             .fuzzy_chosen);
   const auto distorted = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only,
                                                      {.max_fuzzy_distortion_ratio = 0.99 * distortion_ratio});
@@ -239,12 +242,14 @@ TEST_CASE("consistent blended map: the refined best fuzzy map wins where every b
   CHECK(distorted.group == blended_only.group);
   CHECK(distorted.map.nearest == blended_only.map.nearest);
   for (const double bad : {-1.0, std::nan("")})
-    CHECK_THROWS_AS((void)make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only, {.max_fuzzy_distortion_ratio = bad}),
-                    invalid_input);
+    CHECK_THROWS_AS(
+        (void)make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only, {.max_fuzzy_distortion_ratio = bad}),
+        invalid_input);
   // fuzzy_min_distance: the fuzzy map must send the samples at least that far from the most consistent blended
   // map's images; here every blended map is wrong, so it does.
   REQUIRE(with_fuzzy.fuzzy_distance > 0);
-  CHECK(make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only, {.fuzzy_min_distance = 0.99 * with_fuzzy.fuzzy_distance})
+  CHECK(make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only,
+                                    {.fuzzy_min_distance = 0.99 * with_fuzzy.fuzzy_distance})
             .fuzzy_chosen);
   const auto close = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, wrong_only,
                                                  {.fuzzy_min_distance = 1.01 * with_fuzzy.fuzzy_distance});

@@ -98,11 +98,12 @@ struct consistent_blended_options {
   /// ... and only when its geodesic distortion (input_map_geodesic_distortion) is at most this many times that of
   /// the most consistent blended map: the blended matcher's own check on its refinement
   /// (blended_matcher_options::max_refined_distortion_ratio), here against ZoomOut drifting from the fuzzy map.
-  /// 0 = no check.
+  /// 0 = no check (the default: on SHREC'07 no limit separated the pairs it loses; docs/fuzzy.md).
   double max_fuzzy_distortion_ratio = 0;
   /// ... and only when its images lie on average at least this far (mean_image_distance, unit-area units) from
   /// those of the most consistent blended map. Closer, the two are one map up to local precision, and the
-  /// blended map, built from the shapes' own features, is the more precise of them. 0 = no check.
+  /// blended map, built from the shapes' own features, is the more precise of them. 0 = no check (the default,
+  /// likewise).
   double fuzzy_min_distance = 0;
   /// Threads of the fuzzy candidate's refinement (0 = all cores).
   int threads = 0;
@@ -133,7 +134,8 @@ struct consistent_blended_map {
 /// `r` a match of a -> b by `aligner` (intrinsic_aligner::match), so a caller that also wants the pairwise map
 /// matches once.
 /// \throws invalid_input (bad_parameter) for a negative or non-finite min_consistency_gain, fuzzy_min_gain,
-///         max_fuzzy_distortion_ratio or fuzzy_min_distance, (size_mismatch) for an orientation not of the collection's size.
+///         max_fuzzy_distortion_ratio or fuzzy_min_distance, (size_mismatch) for an orientation not of the
+///         collection's size.
 [[nodiscard]] inline consistent_blended_map make_consistent_blended_map(const intrinsic_aligner& aligner,
                                                                         const fuzzy_correspondence& f, index_t a,
                                                                         index_t b, const blended_match_result<double>& r,
@@ -181,8 +183,9 @@ struct consistent_blended_map {
       out.fuzzy_distance = mean_image_distance(*shape_a, *shape_b, fuzzy_map, blended.map);
     }
   }
+  const double distortion_limit = options.max_fuzzy_distortion_ratio * out.most_consistent_distortion;
   const bool fuzzy_undistorted = !(options.max_fuzzy_distortion_ratio > 0) || out.most_consistent_distortion < 0 ||
-                                 out.fuzzy_distortion <= options.max_fuzzy_distortion_ratio * out.most_consistent_distortion;
+                                 out.fuzzy_distortion <= distortion_limit;
   const bool fuzzy_distinct = out.fuzzy_distance < 0 || out.fuzzy_distance >= options.fuzzy_min_distance;
   const bool fuzzy_competes = out.fuzzy_consistency >= 0 && fuzzy_undistorted && fuzzy_distinct &&
                               out.fuzzy_consistency > (1 + options.fuzzy_min_gain) * best;

@@ -20,7 +20,6 @@
 #include <Eigen/SparseCore>
 
 #include "shapestruct/blended/blended_matcher.hpp"
-#include "shapestruct/blended/sample_map_measures.hpp"
 #include "shapestruct/collection/pair_alignment.hpp"
 #include "shapestruct/collection/shape_record.hpp"
 #include "shapestruct/core/errors.hpp"
