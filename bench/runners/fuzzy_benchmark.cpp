@@ -199,7 +199,7 @@ void print_log(const fuzzy_collection_result& r, const std::vector<shape_record>
 }
 
 /// The header and one line of <set>_choices.csv: which map the consistent blended map chose for a pair (the
-/// matcher's own choice, another blended map, or the refined fuzzy map), the consistencies (eq. 4.10) it chose by
+/// matcher's own choice, another blended map, or the refined fuzzy map), the consistencies (eq. 4.10) it chose by,
 /// the geodesic distortions of the refined fuzzy map and of the most consistent blended map, and the mean distance
 /// between their images, so that other selection rules can be studied from one run.
 constexpr const char* choices_header =

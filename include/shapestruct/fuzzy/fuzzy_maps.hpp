@@ -126,7 +126,8 @@ struct consistent_blended_map {
   double fuzzy_distortion = -1;       ///< its geodesic distortion, or -1 when it did not compete
   /// The mean distance between its images and the most consistent blended map's (mean_image_distance), or -1.
   double fuzzy_distance = -1;
-  /// Geodesic distortion of the most consistent blended map (blended_candidate::geodesic_distortion), or -1.
+  /// Geodesic distortion of the most consistent blended map (blended_candidate::geodesic_distortion), or -1 when
+  /// the match has none.
   double most_consistent_distortion = -1;
 };
 
@@ -168,6 +169,8 @@ struct consistent_blended_map {
     if (s > best) best = s, out.most_consistent_group = g;
     if (g == r.selected) pairwise = s;
   }
+  if (out.most_consistent_group != no_index)
+    out.most_consistent_distortion = r.blended[std::size_t(out.most_consistent_group)].geodesic_distortion;
   out.opposite_orientation = !orientation.empty() && orientation[std::size_t(a)] != orientation[std::size_t(b)];
   const bool keep_matcher = out.opposite_orientation && pairwise >= 0;
   surface_map<double> fuzzy_map;
@@ -177,11 +180,9 @@ struct consistent_blended_map {
     const auto shape_a = aligner.prepared_shape(a);
     const auto shape_b = aligner.prepared_shape(b);
     out.fuzzy_distortion = input_map_geodesic_distortion(*shape_a, *shape_b, fuzzy_map);
-    if (out.most_consistent_group != no_index) {
-      const auto& blended = r.blended[std::size_t(out.most_consistent_group)];
-      out.most_consistent_distortion = blended.geodesic_distortion;
-      out.fuzzy_distance = mean_image_distance(*shape_a, *shape_b, fuzzy_map, blended.map);
-    }
+    if (out.most_consistent_group != no_index)
+      out.fuzzy_distance = mean_image_distance(*shape_a, *shape_b, fuzzy_map,
+                                               r.blended[std::size_t(out.most_consistent_group)].map);
   }
   const double distortion_limit = options.max_fuzzy_distortion_ratio * out.most_consistent_distortion;
   const bool fuzzy_undistorted = !(options.max_fuzzy_distortion_ratio > 0) || out.most_consistent_distortion < 0 ||
