@@ -64,6 +64,7 @@
 #include "shapestruct/fuzzy/fuzzy_collection.hpp"
 #include "shapestruct/fuzzy/fuzzy_maps.hpp"
 #include "shapestruct/fuzzy/intrinsic_alignment.hpp"
+#include "shapestruct/fuzzy/refined_fuzzy_alignment.hpp"
 #include "shapestruct/generate/assembly_generator.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
 #include "shapestruct/geometry/sphere_repair.hpp"
@@ -661,8 +662,8 @@ int run_cross(const std::string& set, const fs::path& data, const fs::path& out_
 
 // ---------------------------------------------------------------------------------------------- generated
 /// The matcher alone: each source sample's best-scoring target sample under the pair's initial alternative.
-std::vector<index_t> best_scoring_samples(const pair_alignment& pa) {
-  const auto& scores = pa.alternatives[std::size_t(pa.initial)].scores;
+std::vector<index_t> best_scoring_samples(const alignment_alternative& alternative) {
+  const auto& scores = alternative.scores;
   std::vector<index_t> best(std::size_t(scores.rows()), 0);
   for (index_t i = 0; i < scores.rows(); ++i) {
     float top = -1;
@@ -670,6 +671,10 @@ std::vector<index_t> best_scoring_samples(const pair_alignment& pa) {
       if (it.value() > top) top = it.value(), best[std::size_t(i)] = it.col();
   }
   return best;
+}
+
+std::vector<index_t> best_scoring_samples(const pair_alignment& pa) {
+  return best_scoring_samples(pa.alternatives[std::size_t(pa.initial)]);
 }
 
 /// Least-squares affine map of the target's true landmarks onto the source's, as the one alternative of a pair.
@@ -746,9 +751,9 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
     (rec.samples.rowwise() - x.transpose()).rowwise().squaredNorm().minCoeff(&best);
     return best;
   };
-  std::vector<double> e_fuzzy, e_pairwise, e_affine;
+  std::vector<double> e_fuzzy, e_refined, e_pairwise, e_affine;
   const auto t2 = clock_type::now();
-  std::vector<std::vector<double>> ef(static_cast<std::size_t>(count)), ep(ef), ea(ef);
+  std::vector<std::vector<double>> ef(static_cast<std::size_t>(count)), er(ef), ep(ef), ea(ef);
   detail::parallel_for(count, detail::resolve_threads(threads), [&](int a) {
     const auto la = landmarks(a);
     for (int b = 0; b < count; ++b) {
@@ -759,6 +764,7 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
       const auto& Vb = shapes[std::size_t(b)].mesh.V;
       const double diag = (Vb.colwise().maxCoeff() - Vb.colwise().minCoeff()).norm();
       const auto fuzzy_match = r.fuzzy.best_matches(a, b);
+      const auto refined = best_scoring_samples(refined_fuzzy_alignment(r.fuzzy, records, a, b, knobs.extrinsic));
       const std::vector<index_t> baseline = knobs.baseline ? best_scoring_samples(align_extrinsic(ra, rb)) : std::vector<index_t>{};
       // Least-squares affine map of b's true landmarks onto a's (both directions share the landmark names).
       std::vector<std::string> common;
@@ -770,6 +776,7 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
         const index_t s = nearest_sample(ra, la.at(name));
         const Eigen::Vector3d truth = lb.at(name);
         ef[std::size_t(a)].push_back((rb.samples.row(fuzzy_match[std::size_t(s)]).transpose() - truth).norm() / diag);
+        er[std::size_t(a)].push_back((rb.samples.row(refined[std::size_t(s)]).transpose() - truth).norm() / diag);
         if (knobs.baseline)
           ep[std::size_t(a)].push_back((rb.samples.row(baseline[std::size_t(s)]).transpose() - truth).norm() / diag);
         index_t aff = 0;
@@ -780,12 +787,14 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
   });
   for (int a = 0; a < count; ++a) {
     e_fuzzy.insert(e_fuzzy.end(), ef[std::size_t(a)].begin(), ef[std::size_t(a)].end());
+    e_refined.insert(e_refined.end(), er[std::size_t(a)].begin(), er[std::size_t(a)].end());
     e_pairwise.insert(e_pairwise.end(), ep[std::size_t(a)].begin(), ep[std::size_t(a)].end());
     e_affine.insert(e_affine.end(), ea[std::size_t(a)].begin(), ea[std::size_t(a)].end());
   }
   const double t_eval = seconds_since(t2);
   write_curves(out_dir / (set + std::to_string(count) + "_curves.dat"),
-               {{"best_fuzzy", &e_fuzzy}, {"extrinsic_all_pairs", &e_pairwise}, {"true_landmark_affine", &e_affine}},
+               {{"best_fuzzy", &e_fuzzy}, {"refined_fuzzy", &e_refined}, {"extrinsic_all_pairs", &e_pairwise},
+                {"true_landmark_affine", &e_affine}},
                set + " x " + std::to_string(count) + ": fraction of landmark pairs within D (Euclidean / bbox diagonal)");
   std::ofstream summary(out_dir / "summary.md", std::ios::app);
   summary << "\n## " << count << " generated " << set << " (run_fuzzy_benchmark --set " << set << " --count " << count
@@ -793,12 +802,15 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
           << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1) << " s\n\n"
           << "| method | within 0.05 | within 0.10 | within 0.25 | mean |\n|---|---|---|---|---|\n";
   for (const auto& [m, e] : std::vector<std::pair<std::string, const std::vector<double>*>>{
-           {"best fuzzy", &e_fuzzy}, {"extrinsic matcher, all pairs", &e_pairwise}, {"true-landmark affine, all pairs", &e_affine}})
+           {"best fuzzy", &e_fuzzy}, {"refined fuzzy (one ICP from it)", &e_refined},
+           {"extrinsic matcher, all pairs", &e_pairwise}, {"true-landmark affine, all pairs", &e_affine}})
     summary << "| " << m << " | " << fmt(within(*e, 0.05)) << " | " << fmt(within(*e, 0.10)) << " | "
             << fmt(within(*e, 0.25)) << " | " << fmt(mean_of(*e), 4) << " |\n";
   std::cout << "landmark pairs " << e_fuzzy.size() << " (evaluation " << fmt(t_eval, 1) << " s)\n"
             << "  within 0.05 / 0.10 / 0.25, mean: best fuzzy " << fmt(within(e_fuzzy, 0.05)) << " / "
             << fmt(within(e_fuzzy, 0.10)) << " / " << fmt(within(e_fuzzy, 0.25)) << ", " << fmt(mean_of(e_fuzzy), 4)
+            << "\n  refined fuzzy " << fmt(within(e_refined, 0.05)) << " / " << fmt(within(e_refined, 0.10)) << " / "
+            << fmt(within(e_refined, 0.25)) << ", " << fmt(mean_of(e_refined), 4)
             << "\n  extrinsic all pairs " << fmt(within(e_pairwise, 0.05)) << " / " << fmt(within(e_pairwise, 0.10)) << " / "
             << fmt(within(e_pairwise, 0.25)) << ", " << fmt(mean_of(e_pairwise), 4) << "\n  true-landmark affine "
             << fmt(within(e_affine, 0.05)) << " / " << fmt(within(e_affine, 0.10)) << " / " << fmt(within(e_affine, 0.25))
@@ -903,9 +915,9 @@ int run_labels(const std::string& set, const fs::path& data, const fs::path& out
   summary << "\n## Label transfer, " << set << " (run_fuzzy_benchmark --set " << set << "), extrinsic\n\n"
           << "Mean over ordered pairs of the " << (rand ? "area-weighted Rand index (higher is better)" : "labelled area fraction")
           << " of the target with the source's ground truth carried over.\n\n"
-          << "| collection | shapes | pairs aligned | best fuzzy | extrinsic matcher, all pairs | fuzzy better on | fuzzy s |\n|---|---|---|---|---|---|---|\n";
+          << "| collection | shapes | pairs aligned | best fuzzy | refined fuzzy | extrinsic matcher, all pairs | fuzzy better on | fuzzy s |\n|---|---|---|---|---|---|---|---|\n";
   std::ofstream csv(out_dir / (set + "_labels.csv"));
-  csv << "collection,source,target,best_fuzzy,extrinsic_all_pairs\n";
+  csv << "collection,source,target,best_fuzzy,refined_fuzzy,extrinsic_all_pairs\n";
   for (const auto& spec : specs) {
     const auto t0 = clock_type::now();
     collection_records_options ro;
@@ -929,40 +941,43 @@ int run_labels(const std::string& set, const fs::path& data, const fs::path& out
     const auto t1 = clock_type::now();
     const auto r = compute_fuzzy_correspondences(records, extrinsic_aligner(records, eo), fo);
     const double t_fuzzy = seconds_since(t1);
-    std::vector<std::vector<double>> sf(records.size()), sp(records.size());
+    std::vector<std::vector<double>> sf(records.size()), sr(records.size()), sp(records.size());
     detail::parallel_for(n, detail::resolve_threads(threads), [&](index_t t) {
       for (index_t s = 0; s < n; ++s) {
         if (s == t) continue;
         const auto& T = shapes[std::size_t(t)];
         const auto& S = shapes[std::size_t(s)];
         sf[std::size_t(t)].push_back(label_score(T, transfer(S, T, r.fuzzy.best_matches(t, s)), rand));
+        const auto refined = best_scoring_samples(refined_fuzzy_alignment(r.fuzzy, records, t, s, eo));
+        sr[std::size_t(t)].push_back(label_score(T, transfer(S, T, refined), rand));
         // The matcher alone: target t aligned to source s, each target sample to its best-scoring source sample.
         const auto best = best_scoring_samples(align_extrinsic(records[std::size_t(t)], records[std::size_t(s)], eo));
         sp[std::size_t(t)].push_back(label_score(T, transfer(S, T, best), rand));
       }
     });
-    std::vector<double> f_all, p_all;
+    std::vector<double> f_all, r_all, p_all;
     int better = 0;
     for (index_t t = 0; t < n; ++t) {
       index_t j = 0;
       for (index_t s = 0; s < n; ++s) {
         if (s == t) continue;
         const double a = sf[std::size_t(t)][std::size_t(j)], b = sp[std::size_t(t)][std::size_t(j)];
+        const double c = sr[std::size_t(t)][std::size_t(j)];
         csv << spec.name << "," << records[std::size_t(s)].name << "," << records[std::size_t(t)].name << "," << fmt(a, 4)
-            << "," << fmt(b, 4) << "\n";
-        f_all.push_back(a), p_all.push_back(b);
+            << "," << fmt(c, 4) << "," << fmt(b, 4) << "\n";
+        f_all.push_back(a), r_all.push_back(c), p_all.push_back(b);
         better += a > b ? 1 : 0;
         ++j;
       }
     }
     const std::size_t all_pairs = std::size_t(n) * std::size_t(n - 1) / 2;
     summary << "| " << spec.name << " | " << n << " | " << r.pairs_aligned << " of " << all_pairs << " | "
-            << fmt(mean_of(f_all)) << " | " << fmt(mean_of(p_all)) << " | " << better << " of " << f_all.size() << " | "
+            << fmt(mean_of(f_all)) << " | " << fmt(mean_of(r_all)) << " | " << fmt(mean_of(p_all)) << " | " << better << " of " << f_all.size() << " | "
             << fmt(t_fuzzy, 1) << " |\n";
     std::cout << spec.name << ": " << n << " shapes (records " << fmt(seconds_since(t0) - t_fuzzy, 1) << " s), fuzzy "
               << fmt(t_fuzzy, 1) << " s, pairs aligned " << r.pairs_aligned << " of " << all_pairs << ", rounds "
               << r.log.size() << "\n  " << (rand ? "Rand index" : "labelled area") << ": best fuzzy " << fmt(mean_of(f_all))
-              << ", extrinsic matcher all pairs " << fmt(mean_of(p_all)) << " (fuzzy better on " << better << " of "
+              << ", refined fuzzy " << fmt(mean_of(r_all)) << ", extrinsic matcher all pairs " << fmt(mean_of(p_all)) << " (fuzzy better on " << better << " of "
               << f_all.size() << " ordered pairs)\n";
   }
   return 0;

@@ -296,6 +296,30 @@ inline alignment_alternative score_affine_pair(const shape_record& source, const
   return alt;
 }
 
+/// What ICP and the scores of one pair need, built once per pair: both shapes' surface-point trees and their ICP
+/// query points. ICP pairs only an evenly spread subset of each shape's surface points with the nearest of ALL the
+/// other's: the fit keeps the full surface's accuracy, while 4 starts x 30 iterations x 2 x 1,024 nearest-point
+/// queries (~150 ms per call, measured) shrink to 2 x 128 per iteration (~10 ms per call). 128 per shape leaves
+/// ~115 pairs per direction after trimming for the five parameters, at about the spacing of K = 128 samples.
+struct extrinsic_pair_geometry {
+  static constexpr index_t icp_queries = 128;
+  const shape_record* source;
+  const shape_record* target;
+  knn_index<double, 3> tree_k, tree_l;
+  Eigen::Matrix<double, Eigen::Dynamic, 3> query_k, query_l;
+
+  extrinsic_pair_geometry(const shape_record& s, const shape_record& t)
+      : source(&s), target(&t), tree_k(s.surface_points), tree_l(t.surface_points),
+        query_k(spread_subset(s.surface_points, icp_queries)), query_l(spread_subset(t.surface_points, icp_queries)) {}
+
+  /// ICP from `start`, then the scores of the refined transform.
+  [[nodiscard]] alignment_alternative refine_and_score(const upright_similarity& start,
+                                                       const extrinsic_alignment_options& o) const {
+    const upright_similarity T = refine_upright_icp(query_k, tree_k, query_l, tree_l, start, source->diameter, o);
+    return score_affine_pair(*source, *target, tree_k, tree_l, to_affine_pair(T, o.up_axis), o);
+  }
+};
+
 inline void check_extrinsic_options(const extrinsic_alignment_options& o, const char* who) {
   auto fail = [&](const std::string& what) {
     throw invalid_input(input_error::bad_parameter, no_index, std::string(who) + ": " + what);
@@ -406,14 +430,7 @@ inline void check_extrinsic_record(const shape_record& r, const char* role, cons
   detail::check_extrinsic_record(source, "source", who);
   detail::check_extrinsic_record(target, "target", who);
   const int up = options.up_axis;
-  const knn_index<double, 3> tree_k(source.surface_points), tree_l(target.surface_points);
-  // ICP pairs only an evenly spread subset of each shape's surface points with the nearest of ALL the other's:
-  // the fit keeps the full surface's accuracy, while 4 starts x 30 iterations x 2 x 1,024 nearest-point queries
-  // (~150 ms per call, measured) shrink to 2 x 128 per iteration (~10 ms per call). 128 per shape leaves ~115
-  // pairs per direction after trimming for the five parameters, at about the spacing of K = 128 samples.
-  constexpr index_t icp_queries = 128;
-  const auto query_k = detail::spread_subset(source.surface_points, icp_queries);
-  const auto query_l = detail::spread_subset(target.surface_points, icp_queries);
+  const detail::extrinsic_pair_geometry geometry(source, target);
   const detail::horizontal_frame fk = detail::horizontal_frame_of(source.surface_points, up);
   const detail::horizontal_frame fl = detail::horizontal_frame_of(target.surface_points, up);
   double scale = 1;
@@ -429,9 +446,7 @@ inline void check_extrinsic_record(const shape_record& r, const char* role, cons
     T.scale = scale;
     T.angle = std::remainder(angle, 2 * pi);
     T.translation = fk.centroid - scale * detail::upright_rotation(up, T.angle) * fl.centroid;
-    T = detail::refine_upright_icp(query_k, tree_k, query_l, tree_l, T, source.diameter, options);
-    out.alternatives.push_back(
-        detail::score_affine_pair(source, target, tree_k, tree_l, detail::to_affine_pair(T, up), options));
+    out.alternatives.push_back(geometry.refine_and_score(T, options));
   }
   out.initial = best_global_alternative(out.alternatives);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
