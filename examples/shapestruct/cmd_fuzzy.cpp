@@ -25,6 +25,7 @@
 #include "shapestruct/fuzzy/fuzzy_maps.hpp"
 #include "shapestruct/fuzzy/fuzzy_output.hpp"
 #include "shapestruct/fuzzy/intrinsic_alignment.hpp"
+#include "shapestruct/fuzzy/refined_fuzzy_alignment.hpp"
 #include "shapestruct/io/json_file.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/io/vertex_map_file.hpp"
@@ -62,6 +63,7 @@ struct fuzzy_map_command_line {
   double min_gain = consistent_blended_options{}.min_consistency_gain;
   double fuzzy_min_gain = consistent_blended_options{}.fuzzy_min_gain;
   bool blended_only = false;
+  bool refined = false;
   long long threads = 0;
 };
 
@@ -100,6 +102,19 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
       std::fprintf(stderr, "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld, the most consistent is %ld%s)\n",
                    long(cb.group), cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group),
                    cb.opposite_orientation ? "; the two shapes sit in f the mirror way round, so the matcher's choice is kept" : "");
+  } else if (c.refined) {
+    if (collection.mode != "extrinsic")
+      throw cli::usage_error("--refined needs an extrinsic collection (this one is intrinsic: --consistent-blended "
+                             "refines the fuzzy map there)");
+    extrinsic_alignment_options eo;
+    // The collection's up axis, as its alignments were made (cache.json; +y when an older folder lacks it).
+    if (fs::is_regular_file(dir / "cache.json")) {
+      const auto cache = read_json_file((dir / "cache.json").string());
+      if (const auto* pairs = json_member(cache, "pairs"); pairs != nullptr)
+        if (const auto* up = json_member(*pairs, "up"); up != nullptr) eo.up_axis = up->get<int>();
+    }
+    map = refined_fuzzy_vertex_map(f, records, a, b, read_mesh(files[std::size_t(a)]).mesh.V,
+                                   read_mesh(files[std::size_t(b)]).mesh.V, eo);
   } else {
     const bool on_vertices = !records[std::size_t(b)].sample_vertex.empty() && records[std::size_t(b)].sample_vertex[0] != no_index;
     const Eigen::Matrix<double, Eigen::Dynamic, 3> Vb =
@@ -428,11 +443,14 @@ cli::command_fn setup_fuzzy_map(CLI::App& app) {
       ->check(cli::at_least(0.0))
       ->needs(consistent)
       ->excludes(blended_only);
+  app.add_flag("--refined", c->refined,
+               "(extrinsic collections) the best fuzzy correspondence made precise: the\nupright similarity fitted to it, refined by one ICP; each vertex goes to\nthe nearest vertex of B")
+      ->excludes(consistent);
   app.add_option("--threads", c->threads, "worker threads, 0 = all cores (default)")->type_name("N")->check(cli::at_least(0LL));
   app.footer(
       "Dense vertex map from shape A to shape B of a collection computed by `shapestruct fuzzy`: by default the\n"
       "best fuzzy correspondence (each vertex goes where its nearest sample's closest sample in the embedding\n"
-      "lies); --consistent-blended the map of the pair most consistent with the fuzzy correspondences among the\n"
+      "lies); --refined (extrinsic) that correspondence refined by ICP; --consistent-blended the map of the pair most consistent with the fuzzy correspondences among the\n"
       "blended maps and the best fuzzy map refined by ZoomOut, unless it is less than --min-gain more consistent\n"
       "than the blended matcher's own choice.\n"
       "One 0-based target vertex id per line.");

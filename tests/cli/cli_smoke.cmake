@@ -114,6 +114,8 @@ foreach(variant "" "--blended-only" "--fuzzy-min-gain;0.5")
 endforeach()
 run_cli_error("option without the one it refines" "--blended-only requires --consistent-blended"
               fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/never.map --blended-only)
+run_cli_error("--refined on an intrinsic collection" "--refined needs an extrinsic collection"
+              fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/never.map --refined)
 run_cli_error("contradicting options" "--blended-only excludes --fuzzy-min-gain"
               fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/never.map
               --consistent-blended --blended-only --fuzzy-min-gain 0.2)
@@ -253,6 +255,19 @@ list(LENGTH map_lines map_count)
 if(map_count LESS 8)
   message(FATAL_ERROR "fuzzy-map wrote ${map_count} lines")
 endif()
+# --refined: the same number of lines, each a vertex of the target; on an intrinsic collection a usage error.
+run_cli(0 out fuzzy-map ${WORK}/fuzzy_out ${stem0} ${stem1} -o ${WORK}/a_b_refined.map --refined)
+file(STRINGS ${WORK}/a_b_refined.map refined_lines)
+list(LENGTH refined_lines refined_count)
+if(NOT refined_count EQUAL map_count)
+  message(FATAL_ERROR "fuzzy-map --refined wrote ${refined_count} lines, the plain map ${map_count}")
+endif()
+foreach(line IN LISTS refined_lines)
+  if(NOT line MATCHES "^[0-9]+$")
+    message(FATAL_ERROR "fuzzy-map --refined wrote '${line}', not a vertex id")
+  endif()
+endforeach()
+run_cli_error("--refined with --consistent-blended" "excludes" fuzzy-map ${WORK}/fuzzy_out ${stem0} ${stem1} -o ${WORK}/never.map --refined --consistent-blended)
 run_cli(2 out fuzzy-map ${WORK}/fuzzy_out ${stem0} nosuchshape -o ${WORK}/x.map)
 if(NOT out MATCHES "nosuchshape")
   message(FATAL_ERROR "fuzzy-map does not name the unknown shape:\n${out}")
