@@ -18,6 +18,7 @@
 
 #include <Eigen/Geometry>
 
+#include "fuzzy/extrinsic_fixtures.hpp"
 #include "shapestruct/core/concepts/shape_aligner.hpp"
 #include "shapestruct/fuzzy/extrinsic_alignment.hpp"
 #include "shapestruct/generate/primitive_meshes.hpp"
@@ -25,37 +26,14 @@
 #include "shapestruct/geometry/surface_sampling.hpp"
 
 using namespace shapestruct;
+using test::asymmetric_shape;
+using test::box_union;
 
 static_assert(ShapeAligner<extrinsic_aligner>);
 
 namespace {
 
 using points = Eigen::Matrix<double, Eigen::Dynamic, 3>;
-
-/// A union of axis-aligned boxes given as (centre, half extents), as one mesh (the boxes overlap; the sampler
-/// does not mind).
-triangle_mesh<double> box_union(std::initializer_list<std::pair<Eigen::Vector3d, Eigen::Vector3d>> boxes) {
-  triangle_mesh<double> out;
-  out.V.resize(0, 3);
-  out.F.resize(0, 3);
-  for (const auto& [centre, half] : boxes) {
-    const triangle_mesh<double> b = make_box(half.x(), half.y(), half.z());
-    const index_t v0 = out.V.rows(), f0 = out.F.rows();
-    out.V.conservativeResize(v0 + b.V.rows(), 3);
-    out.F.conservativeResize(f0 + b.F.rows(), 3);
-    out.V.bottomRows(b.V.rows()) = b.V.rowwise() + centre.transpose();
-    out.F.bottomRows(b.F.rows()) = b.F.array() + v0;
-  }
-  return out;
-}
-
-/// An upright (+y) shape with no rotational symmetry about y and no mirror symmetry: a long base slab, a tower
-/// at its +x end and an arm sticking out towards +z near its -x end.
-triangle_mesh<double> asymmetric_shape() {
-  return box_union({{Eigen::Vector3d(0, 0.1, 0), Eigen::Vector3d(1.0, 0.1, 0.4)},
-                    {Eigen::Vector3d(0.8, 0.8, 0), Eigen::Vector3d(0.2, 0.6, 0.4)},
-                    {Eigen::Vector3d(-0.7, 0.35, 0.55), Eigen::Vector3d(0.15, 0.15, 0.3)}});
-}
 
 double mean_pairwise_distance(const points& P) {
   double sum = 0;

@@ -3,8 +3,8 @@
 // fuzzy correspondence, refined by one ICP, recovers the true transform and the true vertex map; bad input throws.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
-#include <initializer_list>
 #include <limits>
 #include <string>
 #include <utility>
@@ -12,36 +12,17 @@
 
 #include <Eigen/Geometry>
 
+#include "fuzzy/extrinsic_fixtures.hpp"
 #include "shapestruct/collection/make_shape_record.hpp"
 #include "shapestruct/collection/spherical_harmonic_descriptor.hpp"
 #include "shapestruct/fuzzy/fuzzy_collection.hpp"
 #include "shapestruct/fuzzy/refined_fuzzy_alignment.hpp"
-#include "shapestruct/generate/primitive_meshes.hpp"
 
 using namespace shapestruct;
 
 namespace {
 
 using points = Eigen::Matrix<double, Eigen::Dynamic, 3>;
-
-/// An upright (+y) shape without rotational or mirror symmetry about y: a base slab, a tower at its +x end and
-/// an arm towards +z near its -x end (the boxes' 24 corners are the vertices; two pairs of them coincide).
-triangle_mesh<double> asymmetric_shape() {
-  triangle_mesh<double> out;
-  out.V.resize(0, 3);
-  out.F.resize(0, 3);
-  for (const auto& [centre, half] : {std::pair{Eigen::Vector3d(0, 0.1, 0), Eigen::Vector3d(1.0, 0.1, 0.4)},
-                                     std::pair{Eigen::Vector3d(0.8, 0.8, 0), Eigen::Vector3d(0.2, 0.6, 0.4)},
-                                     std::pair{Eigen::Vector3d(-0.7, 0.35, 0.55), Eigen::Vector3d(0.15, 0.15, 0.3)}}) {
-    const triangle_mesh<double> b = make_box(half.x(), half.y(), half.z());
-    const index_t v0 = out.V.rows(), f0 = out.F.rows();
-    out.V.conservativeResize(v0 + b.V.rows(), 3);
-    out.F.conservativeResize(f0 + b.F.rows(), 3);
-    out.V.bottomRows(b.V.rows()) = b.V.rowwise() + centre.transpose();
-    out.F.bottomRows(b.F.rows()) = b.F.array() + v0;
-  }
-  return out;
-}
 
 /// x -> scale R(angle about y) x + shift.
 struct upright_move {
@@ -54,13 +35,12 @@ struct upright_move {
 
 struct moved_copies {
   std::vector<triangle_mesh<double>> meshes;
-  std::vector<upright_move> moves;
   std::vector<shape_record> records;
 };
 
 moved_copies make_copies(int count) {
   moved_copies c;
-  const triangle_mesh<double> base = asymmetric_shape();
+  const triangle_mesh<double> base = test::asymmetric_shape();
   const spherical_harmonic_descriptor describe;
   for (int k = 0; k < count; ++k) {
     const upright_move move{0.9 * k, 1.0 + 0.15 * k, Eigen::Vector3d(2.0 * k, 0.1 * k, -1.0 * k)};
@@ -69,7 +49,6 @@ moved_copies make_copies(int count) {
     c.records.push_back(make_shape_record(m, "copy" + std::to_string(k), describe,
                                           {.samples = 48, .surface_points = 512, .metric = sample_metric::euclidean}));
     c.meshes.push_back(std::move(m));
-    c.moves.push_back(move);
   }
   return c;
 }
