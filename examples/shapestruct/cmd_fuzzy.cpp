@@ -111,7 +111,7 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
     if (fs::is_regular_file(dir / "cache.json")) {
       const auto cache = read_json_file((dir / "cache.json").string());
       if (const auto* pairs = json_member(cache, "pairs"); pairs != nullptr)
-        if (const auto* up = json_member(*pairs, "up"); up != nullptr) eo.up_axis = up->get<int>();
+        if (const auto* up = json_member(*pairs, "up"); up != nullptr && up->is_number_integer()) eo.up_axis = up->get<int>();
     }
     map = refined_fuzzy_vertex_map(f, records, a, b, read_mesh(files[std::size_t(a)]).mesh.V,
                                    read_mesh(files[std::size_t(b)]).mesh.V, eo);
@@ -450,9 +450,10 @@ cli::command_fn setup_fuzzy_map(CLI::App& app) {
   app.footer(
       "Dense vertex map from shape A to shape B of a collection computed by `shapestruct fuzzy`: by default the\n"
       "best fuzzy correspondence (each vertex goes where its nearest sample's closest sample in the embedding\n"
-      "lies); --refined (extrinsic) that correspondence refined by ICP; --consistent-blended the map of the pair most consistent with the fuzzy correspondences among the\n"
-      "blended maps and the best fuzzy map refined by ZoomOut, unless it is less than --min-gain more consistent\n"
-      "than the blended matcher's own choice.\n"
+      "lies); --refined (extrinsic collections) that correspondence made precise by one ICP started from it;\n"
+      "--consistent-blended (intrinsic) the map of the pair most consistent with the fuzzy correspondences among\n"
+      "the blended maps and the best fuzzy map refined by ZoomOut, unless it is less than --min-gain more\n"
+      "consistent than the blended matcher's own choice.\n"
       "One 0-based target vertex id per line.");
   return [c] { return run_fuzzy_map(*c); };
 }
