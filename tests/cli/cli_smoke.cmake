@@ -255,7 +255,7 @@ list(LENGTH map_lines map_count)
 if(map_count LESS 8)
   message(FATAL_ERROR "fuzzy-map wrote ${map_count} lines")
 endif()
-# --refined: the same number of lines, each a vertex of the target; on an intrinsic collection a usage error.
+# --refined: one target vertex id per source vertex, like the plain map (its refusal on an intrinsic collection is checked above).
 run_cli(0 out fuzzy-map ${WORK}/fuzzy_out ${stem0} ${stem1} -o ${WORK}/a_b_refined.map --refined)
 file(STRINGS ${WORK}/a_b_refined.map refined_lines)
 list(LENGTH refined_lines refined_count)
