@@ -31,6 +31,7 @@ struct match_options {
   long long samples = 256;
   long long features = 10;
   double feature_radius = blended_matcher_options{}.shape.feature_radius;
+  double max_distortion_ratio = blended_matcher_options{}.max_distortion_ratio;
   long long max_maps = 10000;
   long long max_enumerated = 30000;
   std::string pruning = "distances";
@@ -116,6 +117,7 @@ int run_match(const match_options& m) {
   o.shape.num_samples = m.samples;
   o.shape.max_features = m.features;
   o.shape.feature_radius = m.feature_radius;
+  o.max_distortion_ratio = m.max_distortion_ratio;
   const long long max_enumerated = m.max_enumerated;
   const long long seed = m.seed;
   const std::string& pruning = m.pruning;
@@ -231,6 +233,13 @@ int run_match(const match_options& m) {
   return 0;
 }
 
+/// A ratio as the help text shows it (1.1, not 1.100000).
+std::string format_ratio(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
 command_fn setup_match(CLI::App& app) {
   auto m = std::make_shared<match_options>();
   app.add_option("SRC", m->src, "source mesh")->required();
@@ -254,6 +263,12 @@ command_fn setup_match(CLI::App& app) {
   app.add_option("--feature-radius", m->feature_radius,
                  "AGD maxima closer than R (units of sqrt(area)) are one feature (default 0.15)")
       ->type_name("R");
+  app.add_option("--max-distortion-ratio", m->max_distortion_ratio,
+                 "only blended maps whose geodesic distortion is at most R times the lowest\n"
+                 "can be selected (default " + format_ratio(blended_matcher_options{}.max_distortion_ratio) +
+                     "; 0 = any)")
+      ->type_name("R")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--max-maps", m->max_maps, "candidate conformal maps kept, the most confident (default 10000)")
       ->type_name("N")
       ->check(at_least(1LL));

@@ -138,6 +138,40 @@ TEST_CASE("blended_matcher selects by the chosen rule: area score, integrated co
   }
 }
 
+TEST_CASE("blended_matcher selects only maps within max_distortion_ratio of the lowest geodesic distortion") {
+  // The creature against a copy stretched 1.6 times along x: no map is an isometry, and on this pair the most
+  // confident blended map is not the least distorted one.
+  const auto m = test::front_back_creature(3);
+  auto stretched = m;
+  stretched.V.col(0) *= 1.6;
+  auto o = small_options();
+  const auto sm = blended_matcher<>(o).prepare(m);
+  const auto st = blended_matcher<>(o).prepare(stretched);
+  const auto unfiltered = blended_matcher<>(o).match(sm, st);
+  REQUIRE(unfiltered.blended.size() >= 2);
+  double lowest = unfiltered.blended.front().geodesic_distortion;
+  for (const auto& b : unfiltered.blended) {
+    CHECK(b.selectable);  // 0, the default: every map can be selected
+    lowest = std::min(lowest, b.geodesic_distortion);
+  }
+  for (const double ratio : {1.0, 1.05, 1.5, 1e9}) {
+    CAPTURE(ratio);
+    o.max_distortion_ratio = ratio;
+    const auto r = blended_matcher<>(o).match(sm, st);
+    REQUIRE(r.blended.size() == unfiltered.blended.size());
+    const auto& chosen = r.blended[static_cast<std::size_t>(r.selected)];
+    CHECK(chosen.selectable);
+    for (const auto& b : r.blended) {
+      CHECK(b.selectable == (b.geodesic_distortion <= ratio * lowest));
+      if (b.selectable) CHECK(b.confidence_integral <= chosen.confidence_integral);  // the rule among them
+    }
+    if (ratio == 1.0) CHECK(chosen.geodesic_distortion == lowest);
+    if (ratio == 1e9) CHECK(r.selected == unfiltered.selected);
+  }
+  // The filter must matter here: the most confident map is not the least distorted one.
+  CHECK(unfiltered.blended[static_cast<std::size_t>(unfiltered.selected)].geodesic_distortion > lowest);
+}
+
 TEST_CASE("blended_matcher tells a map from its intrinsic flip by convexity (dome vs dimple)") {
   // Front and back are isometric, so the true map and the front-to-back flip preserve area equally well; the
   // convexity mismatch (a dome must map to a dome) picks the true one.

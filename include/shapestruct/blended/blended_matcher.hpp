@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <exception>
 #include <functional>
 #include <future>
@@ -83,6 +84,12 @@ struct blended_matcher_options {
   /// the flip's and the truth's mismatch differ by less than the noise, so it is off (0) by default;
   /// docs/blended_maps.md has the measurements.
   double convexity_weight = 0.0;
+  /// Only the blended maps whose geodesic distortion (blended_candidate::geodesic_distortion) is at most this many
+  /// times the lowest among the groups can be selected; the selection rule then picks among them. Blended maps
+  /// assume near-isometry, and a head-to-tail swap of a four-legged animal can out-score the true map on
+  /// integrated confidence while distorting geodesic distances clearly more; a left-right flip distorts them about
+  /// as little as the truth and stays for the selection rule to judge. 0 = every map can be selected.
+  double max_distortion_ratio = 0.0;
   /// Apply the Refiner policy (zoomout_refiner by default) to the selected blended map; the unrefined map stays
   /// in blended_match_result::blended[selected].map.
   bool refine = true;
@@ -122,6 +129,9 @@ struct blended_candidate {
   /// smallest. With blended_selection::area_score it is the rank by selection_score alone, with
   /// blended_selection::integrated_confidence the rank by confidence_integral alone.
   index_t selection_rank = 0;
+  /// Whether the selection could pick it: false when its geodesic distortion exceeds
+  /// blended_matcher_options::max_distortion_ratio times the lowest of all the groups.
+  bool selectable = true;
   /// The blended map (source vertices -> target surface points); empty for unselected groups unless
   /// blended_matcher_options::full_maps_for_all_groups (blended_matcher::blend_group rebuilds it).
   surface_map<Scalar> map;
@@ -493,14 +503,31 @@ class blended_matcher {
       rank_by([&](index_t x, index_t y) {
         return maps[static_cast<std::size_t>(x)].confidence_integral > maps[static_cast<std::size_t>(y)].confidence_integral;
       });
-    index_t best = 0;
-    for (index_t g = 1; g < n; ++g) {
+    mark_selectable(maps);
+    index_t best = no_index;
+    for (index_t g = 0; g < n; ++g) {
       const auto& c = maps[static_cast<std::size_t>(g)];
+      if (!c.selectable) continue;
+      if (best == no_index) {
+        best = g;
+        continue;
+      }
       const auto& b = maps[static_cast<std::size_t>(best)];
       if (c.selection_rank < b.selection_rank || (c.selection_rank == b.selection_rank && c.selection_score > b.selection_score))
         best = g;
     }
     return best;
+  }
+
+  /// blended_candidate::selectable: distortion within max_distortion_ratio of the lowest finite one. A map whose
+  /// distortion is not finite is not selectable unless no map's is.
+  void mark_selectable(std::vector<blended_candidate<double>>& maps) const {
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const auto& m : maps)
+      if (std::isfinite(m.geodesic_distortion)) lowest = std::min(lowest, m.geodesic_distortion);
+    for (auto& m : maps)
+      m.selectable = !(options_.max_distortion_ratio > 0) || !std::isfinite(lowest) ||
+                     (std::isfinite(m.geodesic_distortion) && m.geodesic_distortion <= options_.max_distortion_ratio * lowest);
   }
 
   /// The image of every even sample of `a` as a target vertex (the nearest corner; no_index where unmapped).
