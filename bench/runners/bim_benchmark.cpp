@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
   std::string set = "scape", out_dir = "bim_results";
   int limit = -1, stride = 1, offset = 0, threads = 0;
   bool diagnose_groups = false;
-  double eigenvalue_fraction = -1, feature_radius = -1, max_distortion_ratio = -1;
+  double eigenvalue_fraction = -1, feature_radius = -1;
   std::string selection;  // empty: the library default (blended_matcher_options::selection)
   int max_eigenvectors = -1, max_groups = -1;
   bool refine = true, check_refinement = true;
@@ -96,7 +96,6 @@ int main(int argc, char** argv) {
     else if (a == "--eigenvalue-fraction") eigenvalue_fraction = std::stod(next());
     else if (a == "--feature-radius") feature_radius = std::stod(next());
     else if (a == "--selection") selection = next();
-    else if (a == "--max-distortion-ratio") max_distortion_ratio = std::stod(next());
     else if (a == "--max-eigenvectors") max_eigenvectors = std::stoi(next());
     else if (a == "--max-groups") max_groups = std::stoi(next());
     else if (a == "--no-refine") refine = false;
@@ -123,8 +122,7 @@ int main(int argc, char** argv) {
       std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec|humans|animals --out DIR [--limit N] [--stride K] "
                    "[--offset O] [--threads T] [--groups]\n"
                    "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G] [--feature-radius R]\n"
-                   "  [--selection rank-sum|area|confidence] (default: the library's, confidence)\n"
-                   "  [--max-distortion-ratio R] (0 = every group selectable; default: the library's)\n"
+                   "  [--selection rank-sum|area|confidence|confidence-distortion] (default: the library's)\n"
                    "  [--no-refine] [--no-refinement-check] [--zoomout-sizes k0,kmax,step] [--zoomout-samples N] [--zoomout-exact] [--zoomout-radius R]\n"
                    "  [--zoomout-basis lanczos|galerkin[,M[,S]]] (default galerkin,600,1)\n";
       return 2;
@@ -153,11 +151,11 @@ int main(int argc, char** argv) {
   if (selection == "area") options.selection = blended_selection::area_score;
   else if (selection == "confidence") options.selection = blended_selection::integrated_confidence;
   else if (selection == "rank-sum") options.selection = blended_selection::area_and_confidence_rank;
+  else if (selection == "confidence-distortion") options.selection = blended_selection::confidence_and_distortion_rank;
   else if (!selection.empty()) {
-    std::cerr << "--selection must be rank-sum, area or confidence\n";
+    std::cerr << "--selection must be rank-sum, area, confidence or confidence-distortion\n";
     return 2;
   }
-  if (max_distortion_ratio >= 0) options.max_distortion_ratio = max_distortion_ratio;
   if (max_eigenvectors > 0) options.max_eigenvectors = max_eigenvectors;
   if (max_groups > 0) options.max_groups = max_groups;
   options.refine = refine;
@@ -318,7 +316,7 @@ int main(int argc, char** argv) {
           groups_csv << pr.source.name() << "," << pr.target.name() << "," << g << "," << bc.maps.size() << ","
                      << fmt(bc.eigen_weight) << "," << fmt(bc.score) << "," << fmt(bc.confidence_integral) << ","
                      << fmt(bc.geodesic_distortion) << "," << fmt(bc.convexity_mismatch) << "," << fmt(g_raw.mean) << "," << fmt(g_sym.mean) << ","
-                     << fmt(g_raw.within_025) << "," << fmt(g_sym.within_025) << "," << (bc.selectable ? 1 : 0) << ","
+                     << fmt(g_raw.within_025) << "," << fmt(g_sym.within_025) << "," << gi.size() << "," << bc.selection_rank << ","
                      << (static_cast<index_t>(g) == r.selected ? 1 : 0) << "\n";
         }
         groups_csv.flush();

@@ -25,13 +25,33 @@ namespace {
 using namespace shapestruct;
 using namespace shapestruct::cli;
 
+/// The names `match --selection` gives the selection rules (blended_selection).
+constexpr std::pair<const char*, blended_selection> selection_names[] = {
+    {"confidence-distortion", blended_selection::confidence_and_distortion_rank},
+    {"confidence", blended_selection::integrated_confidence},
+    {"area", blended_selection::area_score},
+    {"area-confidence", blended_selection::area_and_confidence_rank},
+};
+
+std::string selection_name(blended_selection rule) {
+  for (const auto& [name, r] : selection_names)
+    if (r == rule) return name;
+  return "confidence";
+}
+
+blended_selection selection_rule(const std::string& name) {
+  for (const auto& [n, r] : selection_names)
+    if (name == n) return r;
+  return blended_selection::integrated_confidence;  // unreachable: CLI11 checks the name
+}
+
 /// The command line of `shapestruct match`.
 struct match_options {
   std::string src, tgt, out, precise, candidates, colors;
   long long samples = 256;
   long long features = 10;
   double feature_radius = blended_matcher_options{}.shape.feature_radius;
-  double max_distortion_ratio = blended_matcher_options{}.max_distortion_ratio;
+  std::string selection = selection_name(blended_matcher_options{}.selection);
   long long max_maps = 10000;
   long long max_enumerated = 30000;
   std::string pruning = "distances";
@@ -117,7 +137,7 @@ int run_match(const match_options& m) {
   o.shape.num_samples = m.samples;
   o.shape.max_features = m.features;
   o.shape.feature_radius = m.feature_radius;
-  o.max_distortion_ratio = m.max_distortion_ratio;
+  o.selection = selection_rule(m.selection);
   const long long max_enumerated = m.max_enumerated;
   const long long seed = m.seed;
   const std::string& pruning = m.pruning;
@@ -233,13 +253,6 @@ int run_match(const match_options& m) {
   return 0;
 }
 
-/// A ratio as the help text shows it (1.1, not 1.100000).
-std::string format_ratio(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", x);
-  return text;
-}
-
 command_fn setup_match(CLI::App& app) {
   auto m = std::make_shared<match_options>();
   app.add_option("SRC", m->src, "source mesh")->required();
@@ -263,12 +276,13 @@ command_fn setup_match(CLI::App& app) {
   app.add_option("--feature-radius", m->feature_radius,
                  "AGD maxima closer than R (units of sqrt(area)) are one feature (default 0.15)")
       ->type_name("R");
-  app.add_option("--max-distortion-ratio", m->max_distortion_ratio,
-                 "only blended maps whose geodesic distortion is at most R times the lowest\n"
-                 "can be selected (default " + format_ratio(blended_matcher_options{}.max_distortion_ratio) +
-                     "; 0 = any)")
-      ->type_name("R")
-      ->check(CLI::NonNegativeNumber);
+  app.add_option("--selection", m->selection,
+                 "how one blended map is chosen among the groups': the lowest sum of its ranks by\n"
+                 "integrated confidence and by geodesic distortion, confidence alone (the chapter's),\n"
+                 "area preservation alone, or the sum of the ranks by area and confidence (default " +
+                     selection_name(blended_matcher_options{}.selection) + ")")
+      ->type_name("confidence-distortion|confidence|area|area-confidence")
+      ->check(one_of({"confidence-distortion", "confidence", "area", "area-confidence"}));
   app.add_option("--max-maps", m->max_maps, "candidate conformal maps kept, the most confident (default 10000)")
       ->type_name("N")
       ->check(at_least(1LL));

@@ -125,7 +125,7 @@ TEST_CASE("blended_matcher selects by the chosen rule: area score, integrated co
   auto o = small_options();
   const auto sm = blended_matcher<>(o).prepare(m);
   for (const auto rule : {blended_selection::area_score, blended_selection::integrated_confidence,
-                          blended_selection::area_and_confidence_rank}) {
+                          blended_selection::area_and_confidence_rank, blended_selection::confidence_and_distortion_rank}) {
     o.selection = rule;
     const auto r = blended_matcher<>(o).match(sm, sm);
     REQUIRE(r.blended.size() >= 2);  // several groups, so the rules have something to choose between
@@ -138,38 +138,35 @@ TEST_CASE("blended_matcher selects by the chosen rule: area score, integrated co
   }
 }
 
-TEST_CASE("blended_matcher selects only maps within max_distortion_ratio of the lowest geodesic distortion") {
-  // The creature against a copy stretched 1.6 times along x: no map is an isometry, and on this pair the most
-  // confident blended map is not the least distorted one.
+TEST_CASE("blended_matcher's confidence_and_distortion_rank sums the ranks by confidence and by geodesic distortion") {
+  // The creature against a copy stretched 1.6 times along x: no map is an isometry, so the groups' distortions
+  // differ, and the most confident map is not the least distorted one.
   const auto m = test::front_back_creature(3);
   auto stretched = m;
   stretched.V.col(0) *= 1.6;
   auto o = small_options();
-  const auto sm = blended_matcher<>(o).prepare(m);
-  const auto st = blended_matcher<>(o).prepare(stretched);
-  const auto unfiltered = blended_matcher<>(o).match(sm, st);
-  REQUIRE(unfiltered.blended.size() >= 2);
-  double lowest = unfiltered.blended.front().geodesic_distortion;
-  for (const auto& b : unfiltered.blended) {
-    CHECK(b.selectable);  // 0, the default: every map can be selected
-    lowest = std::min(lowest, b.geodesic_distortion);
-  }
-  for (const double ratio : {1.0, 1.05, 1.5, 1e9}) {
-    CAPTURE(ratio);
-    o.max_distortion_ratio = ratio;
-    const auto r = blended_matcher<>(o).match(sm, st);
-    REQUIRE(r.blended.size() == unfiltered.blended.size());
-    const auto& chosen = r.blended[static_cast<std::size_t>(r.selected)];
-    CHECK(chosen.selectable);
-    for (const auto& b : r.blended) {
-      CHECK(b.selectable == (b.geodesic_distortion <= ratio * lowest));
-      if (b.selectable) CHECK(b.confidence_integral <= chosen.confidence_integral);  // the rule among them
+  o.selection = blended_selection::confidence_and_distortion_rank;
+  const auto r = blended_matcher<>(o).match(m, stretched);
+  const auto n = r.blended.size();
+  REQUIRE(n >= 2);
+  std::size_t most_confident = 0, least_distorted = 0;
+  for (std::size_t g = 0; g < n; ++g) {
+    std::size_t by_confidence = 0, by_distortion = 0;  // groups ranked before g (strictly better)
+    for (std::size_t h = 0; h < n; ++h) {
+      by_confidence += r.blended[h].confidence_integral > r.blended[g].confidence_integral;
+      by_distortion += r.blended[h].geodesic_distortion < r.blended[g].geodesic_distortion;
     }
-    if (ratio == 1.0) CHECK(chosen.geodesic_distortion == lowest);
-    if (ratio == 1e9) CHECK(r.selected == unfiltered.selected);
+    CAPTURE(g);
+    CHECK(r.blended[g].selection_rank == static_cast<index_t>(by_confidence + by_distortion));  // no ties here
+    if (r.blended[g].confidence_integral > r.blended[most_confident].confidence_integral) most_confident = g;
+    if (r.blended[g].geodesic_distortion < r.blended[least_distorted].geodesic_distortion) least_distorted = g;
   }
-  // The filter must matter here: the most confident map is not the least distorted one.
-  CHECK(unfiltered.blended[static_cast<std::size_t>(unfiltered.selected)].geodesic_distortion > lowest);
+  CHECK(most_confident != least_distorted);  // so both ranks matter
+  const auto& chosen = r.blended[static_cast<std::size_t>(r.selected)];
+  for (const auto& b : r.blended) {
+    CHECK(b.selection_rank >= chosen.selection_rank);
+    if (b.selection_rank == chosen.selection_rank) CHECK(b.selection_score <= chosen.selection_score);  // ties: area
+  }
 }
 
 TEST_CASE("blended_matcher tells a map from its intrinsic flip by convexity (dome vs dimple)") {

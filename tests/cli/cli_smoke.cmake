@@ -178,6 +178,15 @@ run_cli_error("bad --refine" "--refine: must be zoomout or none, got 'bogus'"
               match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --refine bogus)
 run_cli_error("bad --refine-basis" "--refine-basis: must be >= 2, got 1"
               match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --refine-basis 1)
+run_cli_error("bad --selection" "--selection: must be confidence-distortion, confidence, area or area-confidence, got 'bogus'"
+              match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --selection bogus)
+# Every selection rule gives a map of the same length (which rule wins is measured in docs/blended_maps.md).
+run_cli(0 out match ${first_mesh} ${second_mesh} -o ${WORK}/by_distortion.map --refine none --selection confidence-distortion)
+file(STRINGS ${WORK}/by_distortion.map distortion_lines)
+list(LENGTH distortion_lines n_distortion)
+if(NOT n_distortion EQUAL n_blended)
+  message(FATAL_ERROR "match --selection confidence-distortion wrote ${n_distortion} lines, not ${n_blended}")
+endif()
 
 # templates: a bad option value is a usage error (exit code 2) naming the option, before any shape is read.
 run_cli(2 out templates ${WORK}/chairs -o ${WORK}/tpl --learn-best 0)

@@ -50,6 +50,11 @@ enum class blended_selection {
   /// pairs on SCAPE and humans, level on TOSCA, less accurate on SHREC'07 and animals (the measurements:
   /// docs/blended_maps.md).
   integrated_confidence,
+  /// The lowest sum of the map's rank by integrated confidence and its rank by geodesic distortion (lowest first;
+  /// ties: higher area score). Blended maps assume near-isometry: a head-to-tail swap of a four-legged animal can
+  /// win on confidence alone while it distorts geodesic distances clearly more than the true map; a left-right
+  /// flip distorts them about as little as the truth, and confidence still decides between those.
+  confidence_and_distortion_rank,
 };
 
 /// Options of blended_matcher (dissertation ch. 3 defaults).
@@ -84,12 +89,6 @@ struct blended_matcher_options {
   /// the flip's and the truth's mismatch differ by less than the noise, so it is off (0) by default;
   /// docs/blended_maps.md has the measurements.
   double convexity_weight = 0.0;
-  /// Only the blended maps whose geodesic distortion (blended_candidate::geodesic_distortion) is at most this many
-  /// times the lowest among the groups can be selected; the selection rule then picks among them. Blended maps
-  /// assume near-isometry, and a head-to-tail swap of a four-legged animal can out-score the true map on
-  /// integrated confidence while distorting geodesic distances clearly more; a left-right flip distorts them about
-  /// as little as the truth and stays for the selection rule to judge. 0 = every map can be selected.
-  double max_distortion_ratio = 0.0;
   /// Apply the Refiner policy (zoomout_refiner by default) to the selected blended map; the unrefined map stays
   /// in blended_match_result::blended[selected].map.
   bool refine = true;
@@ -127,11 +126,10 @@ struct blended_candidate {
   Scalar selection_score = 0;
   /// Rank sum used by blended_selection::area_and_confidence_rank (0 = best on both); the selected map has the
   /// smallest. With blended_selection::area_score it is the rank by selection_score alone, with
-  /// blended_selection::integrated_confidence the rank by confidence_integral alone.
+  /// blended_selection::integrated_confidence the rank by confidence_integral alone, with
+  /// blended_selection::confidence_and_distortion_rank the sum of the ranks by confidence_integral and by
+  /// geodesic_distortion.
   index_t selection_rank = 0;
-  /// Whether the selection could pick it: false when its geodesic distortion exceeds
-  /// blended_matcher_options::max_distortion_ratio times the lowest of all the groups.
-  bool selectable = true;
   /// The blended map (source vertices -> target surface points); empty for unselected groups unless
   /// blended_matcher_options::full_maps_for_all_groups (blended_matcher::blend_group rebuilds it).
   surface_map<Scalar> map;
@@ -495,39 +493,30 @@ class blended_matcher {
       for (index_t r = 0; r < n; ++r) maps[static_cast<std::size_t>(order[static_cast<std::size_t>(r)])].selection_rank += r;
     };
     for (auto& m : maps) m.selection_rank = 0;
-    if (options_.selection != blended_selection::integrated_confidence)
+    const auto rule = options_.selection;
+    if (rule == blended_selection::area_score || rule == blended_selection::area_and_confidence_rank)
       rank_by([&](index_t x, index_t y) {
         return maps[static_cast<std::size_t>(x)].selection_score > maps[static_cast<std::size_t>(y)].selection_score;
       });
-    if (options_.selection != blended_selection::area_score)
+    if (rule != blended_selection::area_score)
       rank_by([&](index_t x, index_t y) {
         return maps[static_cast<std::size_t>(x)].confidence_integral > maps[static_cast<std::size_t>(y)].confidence_integral;
       });
-    mark_selectable(maps);
-    index_t best = no_index;
-    for (index_t g = 0; g < n; ++g) {
+    if (rule == blended_selection::confidence_and_distortion_rank) {
+      const auto distortion = [&](index_t g) {  // a map whose distortion could not be measured ranks last
+        const double d = maps[static_cast<std::size_t>(g)].geodesic_distortion;
+        return std::isfinite(d) ? d : std::numeric_limits<double>::infinity();
+      };
+      rank_by([&](index_t x, index_t y) { return distortion(x) < distortion(y); });
+    }
+    index_t best = 0;
+    for (index_t g = 1; g < n; ++g) {
       const auto& c = maps[static_cast<std::size_t>(g)];
-      if (!c.selectable) continue;
-      if (best == no_index) {
-        best = g;
-        continue;
-      }
       const auto& b = maps[static_cast<std::size_t>(best)];
       if (c.selection_rank < b.selection_rank || (c.selection_rank == b.selection_rank && c.selection_score > b.selection_score))
         best = g;
     }
     return best;
-  }
-
-  /// blended_candidate::selectable: distortion within max_distortion_ratio of the lowest finite one. A map whose
-  /// distortion is not finite is not selectable unless no map's is.
-  void mark_selectable(std::vector<blended_candidate<double>>& maps) const {
-    double lowest = std::numeric_limits<double>::infinity();
-    for (const auto& m : maps)
-      if (std::isfinite(m.geodesic_distortion)) lowest = std::min(lowest, m.geodesic_distortion);
-    for (auto& m : maps)
-      m.selectable = !(options_.max_distortion_ratio > 0) || !std::isfinite(lowest) ||
-                     (std::isfinite(m.geodesic_distortion) && m.geodesic_distortion <= options_.max_distortion_ratio * lowest);
   }
 
   /// The image of every even sample of `a` as a target vertex (the nearest corner; no_index where unmapped).
