@@ -13,7 +13,7 @@ set yrange [0:1]
 set key bottom right
 set grid
 if (!exists("note")) note = ""
-set title sprintf("Blended intrinsic maps, %s%s", set_name, note)
+set title sprintf("Blended intrinsic maps, %s%s", set_name, note) noenhanced
 do for [fmt in "png svg"] {
   if (fmt eq "png") { set terminal pngcairo size 800,560 } else { set terminal svg size 800,560 }
   set output sprintf("%s/%s_curves.%s", dir, set_name, fmt)
