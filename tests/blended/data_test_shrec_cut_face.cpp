@@ -3,14 +3,11 @@
 // map with mesh 8 failed (mean error 0.78 on the benchmark's scale, d / sqrt(area)). blended_shape cuts away from
 // the features. Skipped without $SHAPESTRUCT_DATA.
 #include <algorithm>
-#include <string>
-#include <vector>
 
 #include <doctest/doctest.h>
 
+#include "dense_benchmark_error.hpp"
 #include "shapestruct/blended/blended_matcher.hpp"
-#include "shapestruct/eval/geodesic_error.hpp"
-#include "shapestruct/io/bim_benchmark_files.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "support/data_path.hpp"
 
@@ -34,17 +31,7 @@ TEST_CASE("blended_matcher maps SHREC'07 human 8 to 13 with the cut away from me
   CHECK(clearance >= o.shape.cut_clearance);
   const auto r = matcher.match(sa, sb);
   // The benchmark's protocol for SHREC'07: the class's feature points (8.vts, 13.vts), d / sqrt(area of the target).
-  const auto fa = read_bim_feature_vertices((shrec / "Corrs/8.vts").string());
-  const auto fb = read_bim_feature_vertices((shrec / "Corrs/13.vts").string());
-  REQUIRE(fa.size() == fb.size());
-  std::vector<index_t> pred, truth;
-  for (std::size_t k = 0; k < fa.size(); ++k) {
-    pred.push_back(sb.internal_vertex(r.map.target_vertex(fa[k])));  // the map is in input numbering
-    truth.push_back(sb.internal_vertex(fb[k]));
-  }
-  const auto e = benchmark_geodesic_errors(sb.mesh().V, sb.mesh().F, sb.geodesics(), std::span<const index_t>(pred),
-                                           std::span<const index_t>(truth));
-  const auto s = summarize_errors(std::span<const double>(e));
+  const auto s = test::feature_point_errors(sb, r.map, shrec / "Corrs/8.vts", shrec / "Corrs/13.vts");
   MESSAGE("SHREC'07 8 -> 13: mean " << s.mean << ", within 0.25 " << s.within_025);
   // The original program's stored result for this pair, 0.0881, on the same scale; the map errs 0.0871, so the
   // margin is small (1 %).

@@ -3,14 +3,10 @@
 // error 0.71 on the benchmark's scale, d / sqrt(area)); the true map is as confident within 0.01 but distorts
 // geodesic distances much less, so blended_selection::confidence_and_distortion_rank selects it.
 // Skipped without $SHAPESTRUCT_DATA.
-#include <string>
-#include <vector>
-
 #include <doctest/doctest.h>
 
+#include "dense_benchmark_error.hpp"
 #include "shapestruct/blended/blended_matcher.hpp"
-#include "shapestruct/eval/geodesic_error.hpp"
-#include "shapestruct/io/bim_benchmark_files.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "support/data_path.hpp"
 
@@ -26,18 +22,8 @@ TEST_CASE("blended_matcher on SHREC'07 four-legged 393 -> 383 selects the true m
   const auto sa = blended_matcher<>(o).prepare(A);
   const auto sb = blended_matcher<>(o).prepare(B);
   // The benchmark's protocol for SHREC'07: the class's feature points (393.vts, 383.vts).
-  const auto fa = read_bim_feature_vertices((shrec / "Corrs/393.vts").string());
-  const auto fb = read_bim_feature_vertices((shrec / "Corrs/383.vts").string());
-  REQUIRE(fa.size() == fb.size());
   const auto mean_error = [&](const blended_match_result<double>& r) {
-    std::vector<index_t> pred, truth;
-    for (std::size_t k = 0; k < fa.size(); ++k) {
-      pred.push_back(sb.internal_vertex(r.map.target_vertex(fa[k])));  // the map is in input numbering
-      truth.push_back(sb.internal_vertex(fb[k]));
-    }
-    const auto e = benchmark_geodesic_errors(sb.mesh().V, sb.mesh().F, sb.geodesics(), std::span<const index_t>(pred),
-                                             std::span<const index_t>(truth));
-    return summarize_errors(std::span<const double>(e)).mean;
+    return test::feature_point_errors(sb, r.map, shrec / "Corrs/393.vts", shrec / "Corrs/383.vts").mean;
   };
   o.selection = blended_selection::integrated_confidence;
   const auto by_confidence = blended_matcher<>(o).match(sa, sb);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The BIM benchmark's dense protocol for two meshes that share their vertex numbering (SCAPE, TOSCA within a
-// class), for the data-driven tests.
+// The BIM benchmark's protocols for the data-driven tests: dense, for two meshes that share their vertex numbering
+// (SCAPE, TOSCA within a class), and at SHREC'07's feature points.
 #pragma once
 
 #include <filesystem>
@@ -32,6 +32,24 @@ inline geodesic_error_summary dense_identity_errors(const blended_shape<double>&
     REQUIRE(image != no_index);
     pred.push_back(target.internal_vertex(image));
     truth.push_back(target.internal_vertex(input));
+  }
+  const auto e = benchmark_geodesic_errors(target.mesh().V, target.mesh().F, target.geodesics(),
+                                           std::span<const index_t>(pred), std::span<const index_t>(truth));
+  return summarize_errors(std::span<const double>(e));
+}
+
+/// Errors of `map` (input numbering) at SHREC'07's feature points: the k-th point of `source_vts` should go to the
+/// k-th of `target_vts` (the class's .vts files), on the benchmark's scale d / sqrt(area of the target).
+inline geodesic_error_summary feature_point_errors(const blended_shape<double>& target, const surface_map<double>& map,
+                                                   const std::filesystem::path& source_vts,
+                                                   const std::filesystem::path& target_vts) {
+  const auto fa = read_bim_feature_vertices(source_vts.string());
+  const auto fb = read_bim_feature_vertices(target_vts.string());
+  REQUIRE(fa.size() == fb.size());
+  std::vector<index_t> pred, truth;
+  for (std::size_t k = 0; k < fa.size(); ++k) {
+    pred.push_back(target.internal_vertex(map.target_vertex(fa[k])));
+    truth.push_back(target.internal_vertex(fb[k]));
   }
   const auto e = benchmark_geodesic_errors(target.mesh().V, target.mesh().F, target.geodesics(),
                                            std::span<const index_t>(pred), std::span<const index_t>(truth));
