@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <exception>
 #include <functional>
 #include <future>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -52,8 +52,10 @@ enum class blended_selection {
   integrated_confidence,
   /// The lowest sum of the map's rank by integrated confidence and its rank by geodesic distortion (lowest first;
   /// ties: higher area score). Blended maps assume near-isometry: a head-to-tail swap of a four-legged animal can
-  /// win on confidence alone while it distorts geodesic distances clearly more than the true map; a left-right
-  /// flip distorts them about as little as the truth, and confidence still decides between those.
+  /// win on confidence alone while it distorts geodesic distances clearly more than the true map. Better than
+  /// integrated_confidence on shapes far from isometric (SHREC'07, animals across species), worse on
+  /// near-isometric ones (SCAPE, TOSCA, humans), where a left-right flip is often a little less distorted than the
+  /// truth (the measurements: docs/blended_maps.md).
   confidence_and_distortion_rank,
 };
 
