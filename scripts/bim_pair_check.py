@@ -14,24 +14,7 @@ import heapq
 import math
 import sys
 
-
-def read_off(path):
-    with open(path) as f:
-        words = f.read().split()
-    if words[0] != "OFF":
-        sys.exit(f"{path}: not an OFF file")
-    nv, nf = int(words[1]), int(words[2])
-    at = 4
-    verts = []
-    for _ in range(nv):
-        verts.append(tuple(float(w) for w in words[at:at + 3]))
-        at += 3
-    faces = []
-    for _ in range(nf):
-        k = int(words[at])
-        faces.append(tuple(int(w) for w in words[at + 1:at + 1 + k]))
-        at += 1 + k
-    return verts, faces
+from off_mesh import face_area, read_off
 
 
 def read_vertex_column(path):
@@ -60,13 +43,9 @@ def main():
     target_points = read_vertex_column(sys.argv[4])
     if len(source_points) != len(target_points):
         sys.exit("the two .vts files list different numbers of points")
-    area = 0.0
+    area = sum(face_area(verts, f) for f in faces)
     neighbours = [dict() for _ in verts]
     for f in faces:
-        for k in range(1, len(f) - 1):  # fan triangulation of each face
-            a, b, c = verts[f[0]], verts[f[k]], verts[f[k + 1]]
-            u, v = sub(b, a), sub(c, a)
-            area += 0.5 * norm((u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]))
         for k in range(len(f)):
             i, j = f[k], f[(k + 1) % len(f)]
             d = norm(sub(verts[i], verts[j]))

@@ -15,29 +15,7 @@ import os
 import subprocess
 import tempfile
 
-
-def read_off(path):
-    t = open(path).read().split()
-    if t[0] != "OFF":
-        raise SystemExit(f"{path}: not an OFF file")
-    n, f = int(t[1]), int(t[2])
-    k = 4
-    V = [tuple(map(float, t[k + 3 * i: k + 3 * i + 3])) for i in range(n)]
-    k += 3 * n
-    F = []
-    for _ in range(f):
-        c = int(t[k])
-        F.append(tuple(int(x) for x in t[k + 1: k + 1 + c]))
-        k += 1 + c
-    return V, F
-
-
-def face_area(V, f):
-    a, b, c = (V[i] for i in f[:3])
-    u = [b[d] - a[d] for d in range(3)]
-    w = [c[d] - a[d] for d in range(3)]
-    x = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]]
-    return 0.5 * sum(e * e for e in x) ** 0.5
+from off_mesh import face_area, read_off
 
 
 def read_seg(path):

@@ -15,17 +15,9 @@ import math
 import os
 import random
 import subprocess
-import sys
 import tempfile
 
-
-def read_off_vertices(path):
-    with open(path) as f:
-        tokens = f.read().split()
-    if tokens[0] != "OFF":
-        sys.exit(f"{path}: not an OFF file")
-    n = int(tokens[1])
-    return [tuple(float(t) for t in tokens[4 + 3 * i: 7 + 3 * i]) for i in range(n)]
+from off_mesh import read_off
 
 
 def read_landmarks(path):
@@ -62,8 +54,8 @@ def main():
             cmd = [a.tool, "fuzzy-map", a.fuzzy_out, names[i], names[j], "-o", out] + (["--refined"] if a.refined else [])
             subprocess.run(cmd, check=True, capture_output=True)
             image = [int(line) for line in open(out)]
-            va = read_off_vertices(os.path.join(a.generated, shapes[i]["mesh"]))
-            vb = read_off_vertices(os.path.join(a.generated, shapes[j]["mesh"]))
+            va = read_off(os.path.join(a.generated, shapes[i]["mesh"]))[0]
+            vb = read_off(os.path.join(a.generated, shapes[j]["mesh"]))[0]
             la = read_landmarks(os.path.join(a.generated, shapes[i]["pts"]))
             lb = read_landmarks(os.path.join(a.generated, shapes[j]["pts"]))
             diag = math.dist([min(v[d] for v in vb) for d in range(3)], [max(v[d] for v in vb) for d in range(3)])
