@@ -31,7 +31,7 @@
 //       index against every human segmentation of the target (the source's first human segmentation is carried).
 // Options: --aligner truth (generated sets) aligns every pair by the least-squares affine map of the true landmarks,
 // the chapter's Figure 4.7 experiment; --sigma / --intrinsic-sigma set the score widths (sigma_fraction of the
-// extrinsic and intrinsic aligners); --min-gain, --fuzzy-min-gain, --max-fuzzy-distortion and --fuzzy-min-distance
+// extrinsic and intrinsic aligners); --up the extrinsic aligner's up axis (-1: none, any rotation); --min-gain, --fuzzy-min-gain, --max-fuzzy-distortion and --fuzzy-min-distance
 // the consistent blended map's min_consistency_gain, fuzzy_min_gain, max_fuzzy_distortion_ratio and
 // fuzzy_min_distance; --no-fuzzy-candidate leaves the refined best fuzzy map out of its
 // candidates (by default the runner also scores that choice as consistent_blended_only); --time, --dims,
@@ -120,6 +120,11 @@ std::string fmt(double x, int prec = 3) {
   char b[64];
   std::snprintf(b, sizeof b, "%.*f", prec, x);
   return b;
+}
+
+/// The cache folder's mark of a non-default up axis (none for +y, so that older caches stay valid).
+std::string up_suffix(const extrinsic_alignment_options& o) {
+  return o.up_axis == extrinsic_alignment_options{}.up_axis ? std::string() : "_up" + std::to_string(o.up_axis);
 }
 
 double mean_of(const std::vector<double>& v) {
@@ -727,7 +732,7 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
   fo.threads = threads;
   fo.cache_folder = out_dir / "cache" / (set + std::to_string(count) + "_seed" + std::to_string(seed) + "_k" +
                                          std::to_string(knobs.samples) + (knobs.aligner == "truth" ? "_truth" : "") +
-                                         "_sigma" + fmt(knobs.extrinsic.sigma_fraction));
+                                         "_sigma" + fmt(knobs.extrinsic.sigma_fraction) + up_suffix(knobs.extrinsic));
   apply(fo);
   const auto t1 = clock_type::now();
   const auto r = knobs.aligner == "truth"
@@ -765,7 +770,7 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
       const double diag = (Vb.colwise().maxCoeff() - Vb.colwise().minCoeff()).norm();
       const auto fuzzy_match = r.fuzzy.best_matches(a, b);
       const auto refined = best_scoring_samples(refined_fuzzy_alignment(r.fuzzy, records, a, b, knobs.extrinsic));
-      const std::vector<index_t> baseline = knobs.baseline ? best_scoring_samples(align_extrinsic(ra, rb)) : std::vector<index_t>{};
+      const std::vector<index_t> baseline = knobs.baseline ? best_scoring_samples(align_extrinsic(ra, rb, knobs.extrinsic)) : std::vector<index_t>{};
       // Least-squares affine map of b's true landmarks onto a's (both directions share the landmark names).
       std::vector<std::string> common;
       for (const auto& [name, x] : la)
@@ -936,7 +941,7 @@ int run_labels(const std::string& set, const fs::path& data, const fs::path& out
     const extrinsic_alignment_options eo = knobs.extrinsic;
     fuzzy_collection_options fo;
     fo.threads = threads;
-    fo.cache_folder = out_dir / "cache" / (spec.name + "_sigma" + fmt(knobs.extrinsic.sigma_fraction));
+    fo.cache_folder = out_dir / "cache" / (spec.name + "_sigma" + fmt(knobs.extrinsic.sigma_fraction) + up_suffix(eo));
     apply(fo);
     const auto t1 = clock_type::now();
     const auto r = compute_fuzzy_correspondences(records, extrinsic_aligner(records, eo), fo);
@@ -1016,6 +1021,7 @@ int main(int argc, char** argv) {
     else if (a == "--orientation-margin") knobs.orientation_margin = std::stod(next());
     else if (a == "--aligner") knobs.aligner = next();
     else if (a == "--sigma") knobs.extrinsic.sigma_fraction = std::stod(next());
+    else if (a == "--up") knobs.extrinsic.up_axis = std::stoi(next());
     else if (a == "--intrinsic-sigma") knobs.intrinsic_sigma = std::stod(next());
     else if (a == "--min-gain") knobs.consistent.min_consistency_gain = std::stod(next());
     else if (a == "--fuzzy-min-gain") knobs.consistent.fuzzy_min_gain = std::stod(next());
@@ -1028,7 +1034,7 @@ int main(int argc, char** argv) {
                    "[--count N] [--seed S] [--threads T]\n"
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--edges-per-shape M] [--no-baseline] [--weak-support F]\n"
                    "  [--orientation-margin F]\n"
-                   "  [--aligner extrinsic|truth] [--sigma F] [--intrinsic-sigma F] [--min-gain F] [--fuzzy-min-gain F]\n"
+                   "  [--aligner extrinsic|truth] [--sigma F] [--up 0|1|2|-1] [--intrinsic-sigma F] [--min-gain F] [--fuzzy-min-gain F]\n"
                    "  [--max-fuzzy-distortion R] [--fuzzy-min-distance D] [--no-fuzzy-candidate] [--refined-duel]\n";
       return 2;
     }

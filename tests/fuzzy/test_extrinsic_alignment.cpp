@@ -360,8 +360,61 @@ TEST_CASE("align_extrinsic rejects non-finite coordinates") {
                 {"align_extrinsic", "target.surface_points"});
 }
 
-TEST_CASE("align_extrinsic rejects an up_axis other than 0, 1 or 2") {
-  for (const int up : {-1, 3}) {
+TEST_CASE("align_extrinsic without an up axis recovers any rotation, a scale and a translation") {
+  // A rotation that tips the up axis over: the upright alignment cannot reach it, the free one must.
+  const shape_record& source = asymmetric_record();
+  const Eigen::Matrix3d rotation =
+      (Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 0.3, -0.5).normalized()) * Eigen::AngleAxisd(2.0, Eigen::Vector3d::UnitZ()))
+          .toRotationMatrix();
+  const double scale = 0.6;
+  const Eigen::Vector3d shift(-2, 1, 0.5);
+  shape_record target = source;
+  target.samples = ((source.samples * (scale * rotation).transpose()).rowwise() + shift.transpose()).eval();
+  target.surface_points = ((source.surface_points * (scale * rotation).transpose()).rowwise() + shift.transpose()).eval();
+  target.diameter = scale * source.diameter;
+
+  extrinsic_alignment_options free;
+  free.up_axis = no_up_axis;
+  const pair_alignment out = align_extrinsic(source, target, free);
+  REQUIRE(out.alternatives.size() == 24);
+  CHECK(out.initial == best_global_alternative(out.alternatives));
+  const alignment_alternative& best = out.alternatives[std::size_t(out.initial)];
+  const Eigen::Matrix<double, 3, 4> M = extrinsic_transform(best);
+  const Eigen::Matrix3d expected = (scale * rotation).inverse();
+  CHECK((M.leftCols<3>() - expected).norm() < 1e-5);
+  CHECK((M.col(3) + expected * shift).norm() < 1e-5 * source.diameter);
+  CHECK(best.global_score > 0.99);
+  for (const auto& alt : out.alternatives) {
+    const Eigen::Matrix3d A = extrinsic_transform(alt).leftCols<3>();
+    const double s = std::cbrt(A.determinant());  // a similarity: A / s is a rotation, never a mirror
+    CHECK(s > 0);
+    CHECK(((A / s) * (A / s).transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-9);
+  }
+
+  const pair_alignment upright = align_extrinsic(source, target);
+  CHECK(upright.alternatives[std::size_t(upright.initial)].global_score < best.global_score - 0.2);
+}
+
+TEST_CASE("fit_free_similarity solves the closed form exactly and never returns a mirror") {
+  std::vector<Eigen::Vector3d> p, x;
+  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(2.5, Eigen::Vector3d(-0.2, 1, 0.7).normalized()).toRotationMatrix();
+  const Eigen::Vector3d shift(0.3, -4, 2);
+  for (int i = 0; i < 20; ++i) {
+    p.emplace_back(std::sin(1.3 * i), std::cos(0.7 * i) * 2, 0.1 * i);
+    x.push_back(1.5 * rotation * p.back() + shift);
+  }
+  const detail::free_similarity T = detail::fit_free_similarity(p, x, true, {});
+  CHECK(T.scale == doctest::Approx(1.5).epsilon(1e-12));
+  CHECK((T.rotation - rotation).norm() < 1e-12);
+  CHECK((T.translation - shift).norm() < 1e-12);
+  // Points mirrored in a plane: the best proper rotation, determinant +1.
+  std::vector<Eigen::Vector3d> mirrored;
+  for (const auto& q : p) mirrored.emplace_back(q.x(), q.y(), -q.z());
+  CHECK(detail::fit_free_similarity(p, mirrored, false, {}).rotation.determinant() == doctest::Approx(1));
+}
+
+TEST_CASE("align_extrinsic rejects an up_axis other than 0, 1, 2 or no_up_axis") {
+  for (const int up : {-2, 3}) {
     extrinsic_alignment_options o;
     o.up_axis = up;
     check_invalid([&] { (void)align_extrinsic(asymmetric_record(), asymmetric_record(), o); },

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// extrinsic_alignment: upright similarity alignment of two shape records (principal-axis starts refined by ICP)
-// and the alignment scores a = L_a * B_a it leaves on an edge of the alignment graph (dissertation 4.3.3).
+// extrinsic_alignment: similarity alignment of two shape records (upright, or any rotation when the models share no
+// up direction; principal-axis starts refined by ICP) and the alignment scores a = L_a * B_a it leaves on an edge of
+// the alignment graph (dissertation 4.3.3).
 #pragma once
 
 #include <algorithm>
@@ -15,7 +16,9 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <Eigen/SparseCore>
 
 #include "shapestruct/collection/pair_alignment.hpp"
@@ -27,10 +30,15 @@
 
 namespace shapestruct {
 
+/// extrinsic_alignment_options::up_axis for a collection whose models share no up direction.
+inline constexpr int no_up_axis = -1;
+
 /// Options of align_extrinsic (the dissertation's defaults where it gives them).
 struct extrinsic_alignment_options {
   /// The axis every model is upright along (0 = x, 1 = y, 2 = z); alignments rotate about it only. +y is up, as
-  /// in the project's generator and most 3D Warehouse / COSEG / PSB models.
+  /// in the project's generator and most 3D Warehouse / COSEG models. no_up_axis (-1): the models are not
+  /// consistently oriented (PSB's four-legged animals lie along x, y or z); the starts are then the four proper
+  /// alignments of the 3-D principal axes and ICP fits any rotation (docs/fuzzy.md measures both on PSB).
   int up_axis = 1;
   /// sigma(S) = sigma_fraction * Diam(S): the ambiguity of a pairwise alignment (4.3.3 uses Diam(S) / 5), > 0.
   /// It trades precision for robustness (docs/fuzzy.md): Diam / 10 keeps landmarks sharper on clean collections
@@ -73,6 +81,17 @@ struct affine_pair {
 inline affine_pair to_affine_pair(const upright_similarity& T, int up) {
   const Eigen::Matrix3d R = upright_rotation(up, T.angle);
   return {T.scale * R, R.transpose() / T.scale, T.translation};
+}
+
+/// x -> scale * rotation * x + translation, any rotation: what extrinsic alignment searches without an up axis.
+struct free_similarity {
+  double scale = 1;
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+};
+
+inline affine_pair to_affine_pair(const free_similarity& T, int /*up*/) {
+  return {T.scale * T.rotation, T.rotation.transpose() / T.scale, T.translation};
 }
 
 /// Centroid, angle of the first horizontal principal axis and RMS radius of a point set: what the principal-axis
@@ -141,6 +160,41 @@ inline upright_similarity fit_upright_similarity(const std::vector<Eigen::Vector
   return T;
 }
 
+/// The similarity with any rotation best taking the p_i onto the x_i, in closed form: the rotation is the 3-D
+/// Procrustes solution (Kabsch: from the SVD of sum x_i' p_i'^T, a reflection turned into the nearest rotation),
+/// the scale and translation as fit_upright_similarity's (Horn's symmetric scale, for the reasons given there).
+/// Degenerate sums keep `previous`'s rotation or scale.
+inline free_similarity fit_free_similarity(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& x,
+                                           bool allow_scale, const free_similarity& previous) {
+  Eigen::Vector3d p_mean = Eigen::Vector3d::Zero(), x_mean = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p_mean += p[i];
+    x_mean += x[i];
+  }
+  p_mean /= double(p.size());
+  x_mean /= double(p.size());
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  double p_norm2 = 0, x_norm2 = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Eigen::Vector3d dp = p[i] - p_mean, dx = x[i] - x_mean;
+    H += dx * dp.transpose();
+    p_norm2 += dp.squaredNorm();
+    x_norm2 += dx.squaredNorm();
+  }
+  free_similarity T = previous;
+  if (H.squaredNorm() > 0) {
+    const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
+    D(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1 : 1;
+    T.rotation = svd.matrixU() * D * svd.matrixV().transpose();
+  }
+  const double scale = std::sqrt(x_norm2 / p_norm2);
+  if (allow_scale && scale > 0 && std::isfinite(scale)) T.scale = scale;
+  if (!allow_scale) T.scale = 1;
+  T.translation = x_mean - T.scale * T.rotation * p_mean;
+  return T;
+}
+
 /// Keeps the pairs whose squared distance is within the `keep` quantile of d2 (ties at the cut all stay).
 inline void trim_pairs(std::vector<Eigen::Vector3d>& p, std::vector<Eigen::Vector3d>& x, std::vector<double>& d2,
                        std::size_t begin, double keep, std::vector<double>& scratch) {
@@ -177,15 +231,35 @@ inline Eigen::Matrix<double, Eigen::Dynamic, 3> spread_subset(const Eigen::Matri
   return out;
 }
 
-/// Symmetric trimmed point-to-point ICP over upright similarities taking the target onto the source: each
-/// iteration pairs every transformed target query point (Ql) with its nearest source surface point (tree_k) and
-/// every source query point (Qk) with the nearest target surface point (tree_l) of its pre-image, drops the
-/// farthest pairs of each direction and refits. `length` scales the translation in the stopping test.
-inline upright_similarity refine_upright_icp(const Eigen::Matrix<double, Eigen::Dynamic, 3>& Qk,
-                                             const knn_index<double, 3>& tree_k,
-                                             const Eigen::Matrix<double, Eigen::Dynamic, 3>& Ql,
-                                             const knn_index<double, 3>& tree_l, upright_similarity T,
-                                             double length, const extrinsic_alignment_options& o) {
+// What the ICP below needs of each kind of transform: the closed-form fit and the size of a step.
+inline upright_similarity fit_like(const upright_similarity& previous, const std::vector<Eigen::Vector3d>& p,
+                                   const std::vector<Eigen::Vector3d>& x, const extrinsic_alignment_options& o) {
+  return fit_upright_similarity(p, x, o.up_axis, o.allow_scale, previous);
+}
+inline free_similarity fit_like(const free_similarity& previous, const std::vector<Eigen::Vector3d>& p,
+                                const std::vector<Eigen::Vector3d>& x, const extrinsic_alignment_options& o) {
+  return fit_free_similarity(p, x, o.allow_scale, previous);
+}
+/// Relative scale change + rotation change in radians + translation change over `length`.
+inline double transform_change(const upright_similarity& next, const upright_similarity& T, double length) {
+  return std::abs(next.scale - T.scale) / T.scale + wrapped_angle_difference(next.angle, T.angle) +
+         (next.translation - T.translation).norm() / length;
+}
+inline double transform_change(const free_similarity& next, const free_similarity& T, double length) {
+  const double cosine = std::clamp(((next.rotation * T.rotation.transpose()).trace() - 1) / 2, -1.0, 1.0);
+  return std::abs(next.scale - T.scale) / T.scale + std::acos(cosine) +
+         (next.translation - T.translation).norm() / length;
+}
+
+/// Symmetric trimmed point-to-point ICP over similarities (upright_similarity or free_similarity) taking the
+/// target onto the source: each iteration pairs every transformed target query point (Ql) with its nearest source
+/// surface point (tree_k) and every source query point (Qk) with the nearest target surface point (tree_l) of its
+/// pre-image, drops the farthest pairs of each direction and refits. `length` scales the translation in the
+/// stopping test.
+template <class Similarity>
+Similarity refine_similarity_icp(const Eigen::Matrix<double, Eigen::Dynamic, 3>& Qk, const knn_index<double, 3>& tree_k,
+                                 const Eigen::Matrix<double, Eigen::Dynamic, 3>& Ql, const knn_index<double, 3>& tree_l,
+                                 Similarity T, double length, const extrinsic_alignment_options& o) {
   // Trimmed ICP (Chetverikov et al. 2002) with a fixed 90 % overlap: parts present in only one of the two
   // shapes (the missing / extraneous parts 4.3 warns about) would otherwise pull the least-squares fit, and a hard
   // trim keeps the closed-form update. Both directions are used, so neither shape's extra parts can be ignored
@@ -220,9 +294,8 @@ inline upright_similarity refine_upright_icp(const Eigen::Matrix<double, Eigen::
       d2.push_back(s2 * nn.sq_distance);
     }
     trim_pairs(p, x, d2, reverse_begin, keep, scratch);
-    const upright_similarity next = fit_upright_similarity(p, x, up, o.allow_scale, T);
-    const double change = std::abs(next.scale - T.scale) / T.scale + wrapped_angle_difference(next.angle, T.angle) +
-                          (next.translation - T.translation).norm() / length;
+    const Similarity next = fit_like(T, p, x, o);
+    const double change = transform_change(next, T, length);
     T = next;
     if (change < o.icp_tolerance) break;
   }
@@ -312,10 +385,10 @@ struct extrinsic_pair_geometry {
       : source(&s), target(&t), tree_k(s.surface_points), tree_l(t.surface_points),
         query_k(spread_subset(s.surface_points, icp_queries)), query_l(spread_subset(t.surface_points, icp_queries)) {}
 
-  /// ICP from `start`, then the scores of the refined transform.
-  [[nodiscard]] alignment_alternative refine_and_score(const upright_similarity& start,
-                                                       const extrinsic_alignment_options& o) const {
-    const upright_similarity T = refine_upright_icp(query_k, tree_k, query_l, tree_l, start, source->diameter, o);
+  /// ICP from `start` (an upright_similarity or a free_similarity), then the scores of the refined transform.
+  template <class Similarity>
+  [[nodiscard]] alignment_alternative refine_and_score(const Similarity& start, const extrinsic_alignment_options& o) const {
+    const Similarity T = refine_similarity_icp(query_k, tree_k, query_l, tree_l, start, source->diameter, o);
     return score_affine_pair(*source, *target, tree_k, tree_l, to_affine_pair(T, o.up_axis), o);
   }
 };
@@ -324,8 +397,8 @@ inline void check_extrinsic_options(const extrinsic_alignment_options& o, const 
   auto fail = [&](const std::string& what) {
     throw invalid_input(input_error::bad_parameter, no_index, std::string(who) + ": " + what);
   };
-  if (o.up_axis < 0 || o.up_axis > 2)
-    fail("options.up_axis must be 0 (x), 1 (y) or 2 (z), got " + std::to_string(o.up_axis));
+  if (o.up_axis < no_up_axis || o.up_axis > 2)
+    fail("options.up_axis must be 0 (x), 1 (y), 2 (z) or no_up_axis (-1), got " + std::to_string(o.up_axis));
   if (!(o.sigma_fraction > 0) || !std::isfinite(o.sigma_fraction))
     fail("options.sigma_fraction must be positive and finite, got " + std::to_string(o.sigma_fraction));
   if (o.icp_iterations < 0) fail("options.icp_iterations must be >= 0, got " + std::to_string(o.icp_iterations));
@@ -355,6 +428,56 @@ inline void check_extrinsic_record(const shape_record& r, const char* role, cons
     throw invalid_input(input_error::bad_parameter, no_index,
                         name + ".diameter must be positive and finite" + shape + ", got " + std::to_string(r.diameter) +
                             "; it is Diam(S), the mean distance between the samples");
+}
+
+/// Centroid, principal axes (columns, largest variance first, a right-handed frame) and RMS radius of a point set.
+struct principal_frame {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+  double rms_radius = 0;
+};
+
+inline principal_frame principal_frame_of(const Eigen::Matrix<double, Eigen::Dynamic, 3>& P) {
+  principal_frame f;
+  const double n = double(P.rows());
+  f.centroid = P.colwise().sum().transpose() / n;
+  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+  for (index_t i = 0; i < P.rows(); ++i) {
+    const Eigen::Vector3d d = P.row(i).transpose() - f.centroid;
+    C += d * d.transpose();
+  }
+  f.rms_radius = std::sqrt(C.trace() / n);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(C);  // ascending eigenvalues
+  f.axes = eigen.eigenvectors().rowwise().reverse();
+  // Each axis's sign fixed by the data (its larger side), then the third made right-handed: the same shape gives
+  // the same frame whatever the solver's signs.
+  for (int k = 0; k < 2; ++k) {
+    double third_moment = 0;
+    for (index_t i = 0; i < P.rows(); ++i) third_moment += std::pow((P.row(i).transpose() - f.centroid).dot(f.axes.col(k)), 3);
+    if (third_moment < 0) f.axes.col(k) = -f.axes.col(k);
+  }
+  f.axes.col(2) = f.axes.col(0).cross(f.axes.col(1));
+  return f;
+}
+
+/// The 24 starts without an up axis: the rotations taking the target's principal axes onto the source's, in any
+/// order and with either sign, the mirrors left out. Any order, not only largest onto largest: measured on PSB
+/// (docs/fuzzy.md), airplanes (span close to length) and tables (square tops) need the other orders.
+inline std::vector<free_similarity> free_starts(const principal_frame& fk, const principal_frame& fl, double scale) {
+  constexpr std::array<std::array<int, 3>, 6> orders = {{{0, 1, 2}, {1, 0, 2}, {0, 2, 1}, {2, 1, 0}, {1, 2, 0}, {2, 0, 1}}};
+  std::vector<free_similarity> out;
+  for (const auto& order : orders)
+    for (int signs = 0; signs < 8; ++signs) {
+      Eigen::Matrix3d P = Eigen::Matrix3d::Zero();  // target axis j -> +-source axis order[j]
+      for (std::size_t j = 0; j < 3; ++j) P(order[j], Eigen::Index(j)) = (signs >> j & 1) ? -1 : 1;
+      if (P.determinant() < 0) continue;
+      free_similarity T;
+      T.scale = scale;
+      T.rotation = fk.axes * P * fl.axes.transpose();
+      T.translation = fk.centroid - scale * T.rotation * fl.centroid;
+      out.push_back(T);
+    }
+  return out;
 }
 
 }  // namespace detail
@@ -410,7 +533,11 @@ inline void check_extrinsic_record(const shape_record& r, const char* role, cons
 /// evenly spread surface_points of each shape (farthest points) are paired with the nearest of all the other's
 /// surface_points.
 ///
-/// All four refined alternatives are returned, in the start order above, with `initial` the one of largest B_a:
+/// With options.up_axis = no_up_axis the rotation is free: 24 starts take the target's 3-D principal axes (PCA of
+/// its surface_points) onto the source's in every order and with every sign change that keeps a rotation, and ICP
+/// fits any rotation per iteration (Kabsch). Six times the work of the upright alignment.
+///
+/// All refined alternatives (4, or 24 without an up axis) are returned, in the start order above, with `initial` the one of largest B_a:
 /// the graph optimisation (4.3.7) may pick another. Each alternative's parameters are the 3 x 4 [s R | t] read back
 /// by extrinsic_transform; B_a uses sigma(S) = options.sigma_fraction * diameter. Distances to a surface are
 /// distances to the nearest of its surface_points. Rows of the scores keep the entries of at least
@@ -431,6 +558,18 @@ inline void check_extrinsic_record(const shape_record& r, const char* role, cons
   detail::check_extrinsic_record(target, "target", who);
   const int up = options.up_axis;
   const detail::extrinsic_pair_geometry geometry(source, target);
+  pair_alignment out;
+  if (up == no_up_axis) {
+    const detail::principal_frame fk = detail::principal_frame_of(source.surface_points);
+    const detail::principal_frame fl = detail::principal_frame_of(target.surface_points);
+    double scale = 1;
+    if (options.allow_scale && fl.rms_radius > 0 && fk.rms_radius > 0) scale = fk.rms_radius / fl.rms_radius;
+    for (const auto& start : detail::free_starts(fk, fl, scale))
+      out.alternatives.push_back(geometry.refine_and_score(start, options));
+    out.initial = best_global_alternative(out.alternatives);
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
+    return out;
+  }
   const detail::horizontal_frame fk = detail::horizontal_frame_of(source.surface_points, up);
   const detail::horizontal_frame fl = detail::horizontal_frame_of(target.surface_points, up);
   double scale = 1;
@@ -439,7 +578,6 @@ inline void check_extrinsic_record(const shape_record& r, const char* role, cons
   constexpr double pi = std::numbers::pi;
   const double theta0 = fk.major_angle - fl.major_angle;
   const std::array<double, 4> starts = {theta0, theta0 + pi, theta0 + pi / 2, theta0 - pi / 2};
-  pair_alignment out;
   out.alternatives.reserve(starts.size());
   for (const double angle : starts) {
     detail::upright_similarity T;

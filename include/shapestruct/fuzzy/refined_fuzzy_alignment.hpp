@@ -18,10 +18,33 @@
 
 namespace shapestruct {
 
-/// The best fuzzy correspondence of shapes a -> b (ch. 4.4.2) turned into a precise alignment: the upright
-/// similarity that best takes every sample of a's best fuzzy match on b onto that sample (closed form, then refitted
-/// twice on the 80 % of pairs it fits best, so that a few wrong matches do not pull it), refined by the extrinsic
-/// matcher's trimmed ICP and scored as align_extrinsic scores its alternatives. f is right globally wherever the
+namespace detail {
+
+/// The similarity best taking the target points onto the source points: fitted in closed form, then refitted twice
+/// on the 80 % of pairs it fits best, so that a few wrong matches do not pull it.
+template <class Similarity>
+Similarity fit_to_matches(const std::vector<Eigen::Vector3d>& target_points,
+                          const std::vector<Eigen::Vector3d>& source_points, const extrinsic_alignment_options& options) {
+  Similarity T = fit_like(Similarity{}, target_points, source_points, options);
+  constexpr int refits = 2;
+  constexpr double keep = 0.8;
+  std::vector<double> d2, scratch;
+  for (int round = 0; round < refits; ++round) {
+    const affine_pair M = to_affine_pair(T, options.up_axis);
+    std::vector<Eigen::Vector3d> p = target_points, x = source_points;
+    d2.clear();
+    for (std::size_t k = 0; k < p.size(); ++k) d2.push_back((M.A * p[k] + M.t - x[k]).squaredNorm());
+    trim_pairs(p, x, d2, 0, keep, scratch);
+    T = fit_like(T, p, x, options);
+  }
+  return T;
+}
+
+}  // namespace detail
+
+/// The best fuzzy correspondence of shapes a -> b (ch. 4.4.2) turned into a precise alignment: the similarity
+/// (upright, or any rotation with options.up_axis = no_up_axis) that best takes every sample of a's best fuzzy
+/// match on b onto that sample (detail::fit_to_matches), refined by the extrinsic matcher's trimmed ICP and scored as align_extrinsic scores its alternatives. f is right globally wherever the
 /// collection is, but only to the spacing of the K samples and blurred by the diffusion; the ICP keeps its global
 /// placement and sharpens it locally. One ICP from where the collection says the shapes correspond, instead of the
 /// matcher's four from principal axes chosen by B_a.
@@ -64,21 +87,12 @@ namespace shapestruct {
                             "' have no fuzzy correspondence (fewer than 3 samples with f > 0): they are not "
                             "connected in the collection's alignment graph");
 
-  const int up = options.up_axis;
-  detail::upright_similarity T = detail::fit_upright_similarity(target_points, source_points, up, options.allow_scale, {});
-  constexpr int refits = 2;
-  constexpr double keep = 0.8;
-  std::vector<double> d2, scratch;
-  for (int round = 0; round < refits; ++round) {
-    const detail::affine_pair M = detail::to_affine_pair(T, up);
-    std::vector<Eigen::Vector3d> p = target_points, x = source_points;
-    d2.clear();
-    for (std::size_t k = 0; k < p.size(); ++k) d2.push_back((M.A * p[k] + M.t - x[k]).squaredNorm());
-    detail::trim_pairs(p, x, d2, 0, keep, scratch);
-    T = detail::fit_upright_similarity(p, x, up, options.allow_scale, T);
-  }
   const detail::extrinsic_pair_geometry geometry(ra, rb);
-  return geometry.refine_and_score(T, options);
+  if (options.up_axis == no_up_axis)
+    return geometry.refine_and_score(detail::fit_to_matches<detail::free_similarity>(target_points, source_points, options),
+                                     options);
+  return geometry.refine_and_score(
+      detail::fit_to_matches<detail::upright_similarity>(target_points, source_points, options), options);
 }
 
 /// The dense vertex map of refined_fuzzy_alignment: every vertex of a, taken into b's frame by the inverse of the
