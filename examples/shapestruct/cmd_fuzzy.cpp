@@ -405,16 +405,19 @@ cli::command_fn setup_fuzzy(CLI::App& app) {
       ->type_name("extrinsic|intrinsic|auto")
       ->check(cli::one_of({"extrinsic", "intrinsic", "auto"}));
   app.add_option("--threads", o.threads, "worker threads, 0 = all cores (default)")->type_name("N")->check(cli::at_least(0LL));
-  app.add_option("--up", o.up, "up axis of the collection (extrinsic mode): 0 x, 1 y (default), 2 z")
-      ->type_name("0|1|2")
-      ->check(cli::in_range(0LL, 2LL));
+  app.add_option("--up", o.up,
+                 "up axis of the collection (extrinsic mode): 0 x, 1 y (default), 2 z, or none\n"
+                 "when the shapes are not consistently oriented (any rotation; 6x the alignment time)")
+      ->type_name("0|1|2|none")
+      ->transform(cli::up_axis_or_none());
   cli::add_fuzzy_run_options(app, o, "");
   app.add_flag("--quiet", o.quiet, "no progress display");
   app.footer(
       "Fuzzy correspondences of every shape file (.off .obj .ply .stl) in DIR (chapter 4): K farthest-point samples\n"
       "per shape, an initial alignment graph from spherical-harmonic descriptors, pairwise alignments along its\n"
-      "edges (extrinsic: upright ICP; intrinsic: blended intrinsic maps), the diffusion embedding of the\n"
-      "correspondence matrix (time T = 10, D = 64 dimensions) and the graph optimisation of Algorithm 1.\n"
+      "edges (extrinsic: ICP, upright unless --up none; intrinsic: blended intrinsic maps), the diffusion\n"
+      "embedding of the correspondence matrix (time T = 10, D = 64 dimensions) and the graph optimisation of\n"
+      "Algorithm 1.\n"
       "OUT holds (docs/fuzzy.md): collection.json, samples.txt, graph.txt, iterations.tsv, fuzzy.bin, and the\n"
       "resume caches records/ and pairs/: run the same command again after an interruption and finished work is\n"
       "not redone. Unreadable, empty or non-finite shapes are reported and skipped.");
@@ -444,7 +447,7 @@ cli::command_fn setup_fuzzy_map(CLI::App& app) {
       ->needs(consistent)
       ->excludes(blended_only);
   app.add_flag("--refined", c->refined,
-               "(extrinsic collections) the best fuzzy correspondence made precise: the\nupright similarity fitted to it, refined by one ICP; each vertex goes to\nthe nearest vertex of B")
+               "(extrinsic collections) the best fuzzy correspondence made precise: the\nsimilarity fitted to it (upright, unless made with --up none), refined by\none ICP; each vertex goes to the nearest vertex of B")
       ->excludes(consistent);
   app.add_option("--threads", c->threads, "worker threads, 0 = all cores (default)")->type_name("N")->check(cli::at_least(0LL));
   app.footer(

@@ -73,6 +73,21 @@ CLI::Validator in_range(T min, T max) {
       "in " + option_check_detail::number_text(min) + ".." + option_check_detail::number_text(max));
 }
 
+/// An up axis 0, 1 or 2, or "none" (handed on as -1: the shapes share no up direction).
+inline CLI::Validator up_axis_or_none() {
+  const CLI::Validator axis = in_range(0LL, 2LL);
+  return CLI::Validator(
+      [axis](std::string& value) -> std::string {
+        if (value == "none") {
+          value = "-1";
+          return {};
+        }
+        const std::string problem = axis(value);
+        return problem.empty() ? problem : "must be 0, 1, 2 or none, got '" + value + "'";
+      },
+      "");
+}
+
 /// The value is one of `choices` (exactly).
 inline CLI::Validator one_of(std::initializer_list<const char*> choices) {
   std::vector<std::string> c(choices.begin(), choices.end());

@@ -16,7 +16,6 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 #include <Eigen/SparseCore>
@@ -26,6 +25,7 @@
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/core/types.hpp"
 #include "shapestruct/geometry/farthest_point_sampling.hpp"
+#include "shapestruct/geometry/principal_frame.hpp"
 #include "shapestruct/knn/knn_index.hpp"
 
 namespace shapestruct {
@@ -430,40 +430,21 @@ inline void check_extrinsic_record(const shape_record& r, const char* role, cons
                             "; it is Diam(S), the mean distance between the samples");
 }
 
-/// Centroid, principal axes (columns, largest variance first, a right-handed frame) and RMS radius of a point set.
-struct principal_frame {
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
-  double rms_radius = 0;
-};
-
-inline principal_frame principal_frame_of(const Eigen::Matrix<double, Eigen::Dynamic, 3>& P) {
-  principal_frame f;
-  const double n = double(P.rows());
-  f.centroid = P.colwise().sum().transpose() / n;
-  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
-  for (index_t i = 0; i < P.rows(); ++i) {
-    const Eigen::Vector3d d = P.row(i).transpose() - f.centroid;
-    C += d * d.transpose();
-  }
-  f.rms_radius = std::sqrt(C.trace() / n);
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(C);  // ascending eigenvalues
-  f.axes = eigen.eigenvectors().rowwise().reverse();
-  // Each axis's sign fixed by the data (its larger side), then the third made right-handed: the same shape gives
-  // the same frame whatever the solver's signs.
-  for (int k = 0; k < 2; ++k) {
-    double third_moment = 0;
-    for (index_t i = 0; i < P.rows(); ++i) third_moment += std::pow((P.row(i).transpose() - f.centroid).dot(f.axes.col(k)), 3);
-    if (third_moment < 0) f.axes.col(k) = -f.axes.col(k);
-  }
-  f.axes.col(2) = f.axes.col(0).cross(f.axes.col(1));
-  return f;
+/// The principal frame of all of P (its surface points).
+inline principal_frame principal_frame_of_all(const Eigen::Matrix<double, Eigen::Dynamic, 3>& P) {
+  std::vector<index_t> all(static_cast<std::size_t>(P.rows()));
+  for (index_t i = 0; i < P.rows(); ++i) all[std::size_t(i)] = i;
+  return principal_frame_of(P, all);
 }
 
 /// The 24 starts without an up axis: the rotations taking the target's principal axes onto the source's, in any
-/// order and with either sign, the mirrors left out. Any order, not only largest onto largest: measured on PSB
-/// (docs/fuzzy.md), airplanes (span close to length) and tables (square tops) need the other orders.
-inline std::vector<free_similarity> free_starts(const principal_frame& fk, const principal_frame& fl, double scale) {
+/// order and with either sign, the mirrors left out (both frames are right-handed). Any order, not only largest
+/// onto largest: measured on PSB (docs/fuzzy.md), airplanes (span close to length) and tables (square tops) need
+/// the other orders. The scale starts at the ratio of the RMS radii, the translation maps mean onto mean.
+inline std::vector<free_similarity> free_starts(const principal_frame& fk, const principal_frame& fl,
+                                                bool allow_scale) {
+  const double rk = std::sqrt(fk.variances.sum()), rl = std::sqrt(fl.variances.sum());
+  const double scale = allow_scale && rk > 0 && rl > 0 ? rk / rl : 1;
   constexpr std::array<std::array<int, 3>, 6> orders = {{{0, 1, 2}, {1, 0, 2}, {0, 2, 1}, {2, 1, 0}, {1, 2, 0}, {2, 0, 1}}};
   std::vector<free_similarity> out;
   for (const auto& order : orders)
@@ -473,8 +454,8 @@ inline std::vector<free_similarity> free_starts(const principal_frame& fk, const
       if (P.determinant() < 0) continue;
       free_similarity T;
       T.scale = scale;
-      T.rotation = fk.axes * P * fl.axes.transpose();
-      T.translation = fk.centroid - scale * T.rotation * fl.centroid;
+      T.rotation = fk.axes.transpose() * P * fl.axes;  // axes are rows
+      T.translation = fk.mean - scale * T.rotation * fl.mean;
       out.push_back(T);
     }
   return out;
@@ -560,11 +541,9 @@ inline std::vector<free_similarity> free_starts(const principal_frame& fk, const
   const detail::extrinsic_pair_geometry geometry(source, target);
   pair_alignment out;
   if (up == no_up_axis) {
-    const detail::principal_frame fk = detail::principal_frame_of(source.surface_points);
-    const detail::principal_frame fl = detail::principal_frame_of(target.surface_points);
-    double scale = 1;
-    if (options.allow_scale && fl.rms_radius > 0 && fk.rms_radius > 0) scale = fk.rms_radius / fl.rms_radius;
-    for (const auto& start : detail::free_starts(fk, fl, scale))
+    const principal_frame fk = detail::principal_frame_of_all(source.surface_points);
+    const principal_frame fl = detail::principal_frame_of_all(target.surface_points);
+    for (const auto& start : detail::free_starts(fk, fl, options.allow_scale))
       out.alternatives.push_back(geometry.refine_and_score(start, options));
     out.initial = best_global_alternative(out.alternatives);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
