@@ -124,6 +124,25 @@ inline horizontal_frame horizontal_frame_of(const Eigen::Matrix<double, Eigen::D
   return f;
 }
 
+/// The means of two equally long point lists.
+inline std::pair<Eigen::Vector3d, Eigen::Vector3d> means_of(const std::vector<Eigen::Vector3d>& p,
+                                                            const std::vector<Eigen::Vector3d>& x) {
+  Eigen::Vector3d p_mean = Eigen::Vector3d::Zero(), x_mean = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p_mean += p[i];
+    x_mean += x[i];
+  }
+  return {p_mean / double(p.size()), x_mean / double(p.size())};
+}
+
+/// Horn's symmetric scale sqrt(x_norm2 / p_norm2) (see fit_upright_similarity), `previous` where it is not a
+/// positive finite number, 1 without allow_scale.
+inline double symmetric_scale(double x_norm2, double p_norm2, bool allow_scale, double previous) {
+  if (!allow_scale) return 1;
+  const double scale = std::sqrt(x_norm2 / p_norm2);
+  return scale > 0 && std::isfinite(scale) ? scale : previous;
+}
+
 /// The upright similarity best taking the p_i onto the x_i, in closed form. The rotation about `up` is the 2-D
 /// Procrustes solution in the horizontal plane (the angle of sum z(x_i) conj(z(p_i)) for centred points written as
 /// complex numbers z = v_a + i v_b); the up components need no rotation. The scale is Horn's symmetric one,
@@ -136,13 +155,7 @@ inline upright_similarity fit_upright_similarity(const std::vector<Eigen::Vector
                                                  const std::vector<Eigen::Vector3d>& x, int up, bool allow_scale,
                                                  const upright_similarity& previous) {
   const int a = (up + 1) % 3, b = (up + 2) % 3;
-  Eigen::Vector3d p_mean = Eigen::Vector3d::Zero(), x_mean = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    p_mean += p[i];
-    x_mean += x[i];
-  }
-  p_mean /= double(p.size());
-  x_mean /= double(p.size());
+  const auto [p_mean, x_mean] = means_of(p, x);
   double re = 0, im = 0, p_norm2 = 0, x_norm2 = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Eigen::Vector3d dp = p[i] - p_mean, dx = x[i] - x_mean;
@@ -153,9 +166,7 @@ inline upright_similarity fit_upright_similarity(const std::vector<Eigen::Vector
   }
   upright_similarity T = previous;
   if (re != 0 || im != 0) T.angle = std::atan2(im, re);
-  const double scale = std::sqrt(x_norm2 / p_norm2);
-  if (allow_scale && scale > 0 && std::isfinite(scale)) T.scale = scale;
-  if (!allow_scale) T.scale = 1;
+  T.scale = symmetric_scale(x_norm2, p_norm2, allow_scale, T.scale);
   T.translation = x_mean - T.scale * upright_rotation(up, T.angle) * p_mean;
   return T;
 }
@@ -166,13 +177,7 @@ inline upright_similarity fit_upright_similarity(const std::vector<Eigen::Vector
 /// Degenerate sums keep `previous`'s rotation or scale.
 inline free_similarity fit_free_similarity(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& x,
                                            bool allow_scale, const free_similarity& previous) {
-  Eigen::Vector3d p_mean = Eigen::Vector3d::Zero(), x_mean = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    p_mean += p[i];
-    x_mean += x[i];
-  }
-  p_mean /= double(p.size());
-  x_mean /= double(p.size());
+  const auto [p_mean, x_mean] = means_of(p, x);
   Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
   double p_norm2 = 0, x_norm2 = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -188,9 +193,7 @@ inline free_similarity fit_free_similarity(const std::vector<Eigen::Vector3d>& p
     D(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1 : 1;
     T.rotation = svd.matrixU() * D * svd.matrixV().transpose();
   }
-  const double scale = std::sqrt(x_norm2 / p_norm2);
-  if (allow_scale && scale > 0 && std::isfinite(scale)) T.scale = scale;
-  if (!allow_scale) T.scale = 1;
+  T.scale = symmetric_scale(x_norm2, p_norm2, allow_scale, T.scale);
   T.translation = x_mean - T.scale * T.rotation * p_mean;
   return T;
 }
