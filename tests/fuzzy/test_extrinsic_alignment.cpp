@@ -363,14 +363,15 @@ TEST_CASE("align_extrinsic rejects non-finite coordinates") {
 TEST_CASE("align_extrinsic without an up axis recovers any rotation, a scale and a translation") {
   // A rotation that tips the up axis over: the upright alignment cannot reach it, the free one must.
   const shape_record& source = asymmetric_record();
-  const Eigen::Matrix3d rotation =
-      (Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 0.3, -0.5).normalized()) * Eigen::AngleAxisd(2.0, Eigen::Vector3d::UnitZ()))
-          .toRotationMatrix();
+  const Eigen::Matrix3d rotation = (Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 0.3, -0.5).normalized()) *
+                                    Eigen::AngleAxisd(2.0, Eigen::Vector3d::UnitZ()))
+                                       .toRotationMatrix();
   const double scale = 0.6;
   const Eigen::Vector3d shift(-2, 1, 0.5);
   shape_record target = source;
-  target.samples = ((source.samples * (scale * rotation).transpose()).rowwise() + shift.transpose()).eval();
-  target.surface_points = ((source.surface_points * (scale * rotation).transpose()).rowwise() + shift.transpose()).eval();
+  const Eigen::Matrix3d linear = scale * rotation;
+  target.samples = ((source.samples * linear.transpose()).rowwise() + shift.transpose()).eval();
+  target.surface_points = ((source.surface_points * linear.transpose()).rowwise() + shift.transpose()).eval();
   target.diameter = scale * source.diameter;
 
   extrinsic_alignment_options free;
@@ -397,7 +398,8 @@ TEST_CASE("align_extrinsic without an up axis recovers any rotation, a scale and
 
 TEST_CASE("fit_free_similarity solves the closed form exactly and never returns a mirror") {
   std::vector<Eigen::Vector3d> p, x;
-  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(2.5, Eigen::Vector3d(-0.2, 1, 0.7).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(2.5, Eigen::Vector3d(-0.2, 1, 0.7).normalized()).toRotationMatrix();
   const Eigen::Vector3d shift(0.3, -4, 2);
   for (int i = 0; i < 20; ++i) {
     p.emplace_back(std::sin(1.3 * i), std::cos(0.7 * i) * 2, 0.1 * i);

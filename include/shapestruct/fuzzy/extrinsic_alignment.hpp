@@ -390,7 +390,8 @@ struct extrinsic_pair_geometry {
 
   /// ICP from `start` (an upright_similarity or a free_similarity), then the scores of the refined transform.
   template <class Similarity>
-  [[nodiscard]] alignment_alternative refine_and_score(const Similarity& start, const extrinsic_alignment_options& o) const {
+  [[nodiscard]] alignment_alternative refine_and_score(const Similarity& start,
+                                                       const extrinsic_alignment_options& o) const {
     const Similarity T = refine_similarity_icp(query_k, tree_k, query_l, tree_l, start, source->diameter, o);
     return score_affine_pair(*source, *target, tree_k, tree_l, to_affine_pair(T, o.up_axis), o);
   }
@@ -448,7 +449,8 @@ inline std::vector<free_similarity> free_starts(const principal_frame& fk, const
                                                 bool allow_scale) {
   const double rk = std::sqrt(fk.variances.sum()), rl = std::sqrt(fl.variances.sum());
   const double scale = allow_scale && rk > 0 && rl > 0 ? rk / rl : 1;
-  constexpr std::array<std::array<int, 3>, 6> orders = {{{0, 1, 2}, {1, 0, 2}, {0, 2, 1}, {2, 1, 0}, {1, 2, 0}, {2, 0, 1}}};
+  constexpr std::array<std::array<int, 3>, 6> orders = {
+      {{0, 1, 2}, {1, 0, 2}, {0, 2, 1}, {2, 1, 0}, {1, 2, 0}, {2, 0, 1}}};
   std::vector<free_similarity> out;
   for (const auto& order : orders)
     for (int signs = 0; signs < 8; ++signs) {
@@ -521,10 +523,10 @@ inline std::vector<free_similarity> free_starts(const principal_frame& fk, const
 /// its surface_points) onto the source's in every order and with every sign change that keeps a rotation, and ICP
 /// fits any rotation per iteration (Kabsch). Six times the work of the upright alignment.
 ///
-/// All refined alternatives (4, or 24 without an up axis) are returned, in the start order above, with `initial` the one of largest B_a:
-/// the graph optimisation (4.3.7) may pick another. Each alternative's parameters are the 3 x 4 [s R | t] read back
-/// by extrinsic_transform; B_a uses sigma(S) = options.sigma_fraction * diameter. Distances to a surface are
-/// distances to the nearest of its surface_points. Rows of the scores keep the entries of at least
+/// All refined alternatives (4, or 24 without an up axis) are returned, in the start order above, with `initial`
+/// the one of largest B_a: the graph optimisation (4.3.7) may pick another. Each alternative's parameters are the
+/// 3 x 4 [s R | t] read back by extrinsic_transform; B_a uses sigma(S) = options.sigma_fraction * diameter.
+/// Distances to a surface are distances to the nearest of its surface_points. Rows of the scores keep the entries of at least
 /// keep_fraction * the row's largest, at most max_entries_per_row of them (the largest), never fewer than one.
 /// `seconds` is the wall time of the call.
 ///

@@ -24,7 +24,8 @@ namespace detail {
 /// on the 80 % of pairs it fits best, so that a few wrong matches do not pull it.
 template <class Similarity>
 Similarity fit_to_matches(const std::vector<Eigen::Vector3d>& target_points,
-                          const std::vector<Eigen::Vector3d>& source_points, const extrinsic_alignment_options& options) {
+                          const std::vector<Eigen::Vector3d>& source_points,
+                          const extrinsic_alignment_options& options) {
   Similarity T = fit_like(Similarity{}, target_points, source_points, options);
   constexpr int refits = 2;
   constexpr double keep = 0.8;
@@ -44,9 +45,10 @@ Similarity fit_to_matches(const std::vector<Eigen::Vector3d>& target_points,
 
 /// The best fuzzy correspondence of shapes a -> b (ch. 4.4.2) turned into a precise alignment: the similarity
 /// (upright, or any rotation with options.up_axis = no_up_axis) that best takes every sample of a's best fuzzy
-/// match on b onto that sample (detail::fit_to_matches), refined by the extrinsic matcher's trimmed ICP and scored as align_extrinsic scores its alternatives. f is right globally wherever the
-/// collection is, but only to the spacing of the K samples and blurred by the diffusion; the ICP keeps its global
-/// placement and sharpens it locally. One ICP from where the collection says the shapes correspond, instead of the
+/// match on b onto that sample (detail::fit_to_matches), refined by the extrinsic matcher's trimmed ICP and scored
+/// as align_extrinsic scores its alternatives. f is right globally wherever the collection is, but only to the
+/// spacing of the K samples and blurred by the diffusion; the ICP keeps its global placement and sharpens it
+/// locally. One ICP from where the collection says the shapes correspond, instead of the
 /// matcher's four from principal axes chosen by B_a.
 /// \param f the collection's fuzzy correspondence  \param records the collection's records (f's shapes)
 /// \param a, b source and target: the transform takes b into a's frame, as an alternative of the pair (a, b)
@@ -89,8 +91,8 @@ Similarity fit_to_matches(const std::vector<Eigen::Vector3d>& target_points,
 
   const detail::extrinsic_pair_geometry geometry(ra, rb);
   if (options.up_axis == no_up_axis)
-    return geometry.refine_and_score(detail::fit_to_matches<detail::free_similarity>(target_points, source_points, options),
-                                     options);
+    return geometry.refine_and_score(
+        detail::fit_to_matches<detail::free_similarity>(target_points, source_points, options), options);
   return geometry.refine_and_score(
       detail::fit_to_matches<detail::upright_similarity>(target_points, source_points, options), options);
 }
