@@ -10,16 +10,10 @@ images, and the score is the target's area labelled as its ground truth says. Th
 its centroid's nearest sample instead, so the two agree to the part borders, not digit for digit.
 """
 import argparse
-import collections
 import os
-import subprocess
-import tempfile
 
+from label_transfer import fuzzy_vertex_map, read_seg, transferred_face_labels
 from off_mesh import face_area, read_off
-
-
-def read_seg(path):
-    return [int(line) for line in open(path) if line.strip()]
 
 
 def main():
@@ -30,30 +24,20 @@ def main():
     ap.add_argument("pairs", nargs="+", help="TARGET:SOURCE shape ids")
     ap.add_argument("--refined", action="store_true", help="pass --refined to fuzzy-map")
     a = ap.parse_args()
-    with tempfile.TemporaryDirectory() as tmp:
-        for pair in a.pairs:
-            t, s = pair.split(":")
-            out = os.path.join(tmp, "t_s.map")
-            subprocess.run([a.tool, "fuzzy-map", a.fuzzy_out, t, s, "-o", out] + (["--refined"] if a.refined else []),
-                           check=True, capture_output=True)
-            image = [int(line) for line in open(out)]
-            VT, FT = read_off(os.path.join(a.chairs, "shapes", t + ".off"))
-            VS, FS = read_off(os.path.join(a.chairs, "shapes", s + ".off"))
-            LT = read_seg(os.path.join(a.chairs, "gt", t + ".seg"))
-            LS = read_seg(os.path.join(a.chairs, "gt", s + ".seg"))
-            at_vertex = collections.defaultdict(collections.Counter)
-            for fi, f in enumerate(FS):
-                area = face_area(VS, f)
-                for v in f:
-                    at_vertex[v][LS[fi]] += area
-            label = {v: c.most_common(1)[0][0] for v, c in at_vertex.items()}
-            right = total = 0.0
-            for fi, f in enumerate(FT):
-                votes = collections.Counter(label.get(image[v], -1) for v in f)
-                area = face_area(VT, f)
-                total += area
-                right += area * (votes.most_common(1)[0][0] == LT[fi])
-            print(f"target {t} from {s}: {right / total:.4f}")
+    for pair in a.pairs:
+        t, s = pair.split(":")
+        image = fuzzy_vertex_map(a.tool, a.fuzzy_out, t, s, a.refined)
+        VT, FT = read_off(os.path.join(a.chairs, "shapes", t + ".off"))
+        VS, FS = read_off(os.path.join(a.chairs, "shapes", s + ".off"))
+        LT = read_seg(os.path.join(a.chairs, "gt", t + ".seg"))
+        LS = read_seg(os.path.join(a.chairs, "gt", s + ".seg"))
+        labels = transferred_face_labels(VS, FS, LS, FT, image)
+        right = total = 0.0
+        for fi, f in enumerate(FT):
+            area = face_area(VT, f)
+            total += area
+            right += area * (labels[fi] == LT[fi])
+        print(f"target {t} from {s}: {right / total:.4f}")
 
 
 if __name__ == "__main__":

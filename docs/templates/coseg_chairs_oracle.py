@@ -17,28 +17,9 @@ import itertools
 import os
 import sys
 
-
-def read_off(path):
-    t = open(path).read().split()
-    if t[0] != 'OFF':
-        raise SystemExit(f'{path}: not an OFF file')
-    nv, nf = int(t[1]), int(t[2])
-    i = 4
-    V = [(float(t[i + 3 * k]), float(t[i + 3 * k + 1]), float(t[i + 3 * k + 2])) for k in range(nv)]
-    i += 3 * nv
-    F = []
-    for _ in range(nf):
-        n = int(t[i])
-        F.append(tuple(int(x) for x in t[i + 1:i + 1 + n]))
-        i += 1 + n
-    return V, F
-
-
-def tri_area(a, b, c):
-    u = [b[j] - a[j] for j in range(3)]
-    v = [c[j] - a[j] for j in range(3)]
-    x = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
-    return 0.5 * (x[0] ** 2 + x[1] ** 2 + x[2] ** 2) ** 0.5
+# The OFF reader the check scripts share (scripts/off_mesh.py).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'scripts'))
+from off_mesh import read_off, triangle_area  # noqa: E402
 
 
 def main(root):
@@ -52,7 +33,7 @@ def main(root):
         hi = [max(v[k] for v in V) for k in range(3)]
         acc = {}
         for f, g in zip(F, gt):
-            a = tri_area(V[f[0]], V[f[1]], V[f[2]])
+            a = triangle_area(V[f[0]], V[f[1]], V[f[2]])
             s = acc.setdefault(g, [0.0, [0.0, 0.0, 0.0]])
             s[0] += a
             for k in range(3):

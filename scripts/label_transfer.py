@@ -1,0 +1,33 @@
+"""Part labels carried through a dense vertex map, for the check scripts beside this file (they import it)."""
+import collections
+import os
+import subprocess
+import tempfile
+
+from off_mesh import face_area
+
+
+def read_seg(path):
+    """One integer label per face, per line."""
+    return [int(line) for line in open(path) if line.strip()]
+
+
+def fuzzy_vertex_map(tool, fuzzy_out, a, b, refined):
+    """The image on shape b of every vertex of shape a, from `shapestruct fuzzy-map` on a `fuzzy` output folder."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "a_b.map")
+        subprocess.run([tool, "fuzzy-map", fuzzy_out, a, b, "-o", out] + (["--refined"] if refined else []),
+                       check=True, capture_output=True)
+        return [int(line) for line in open(out)]
+
+
+def transferred_face_labels(source_verts, source_faces, source_labels, target_faces, image):
+    """Every source vertex takes the label with the most incident face area there, every target face the majority
+    over its corners' images (image: target vertex -> source vertex); -1 where no label reaches."""
+    at_vertex = collections.defaultdict(collections.Counter)
+    for fi, f in enumerate(source_faces):
+        area = face_area(source_verts, f)
+        for v in f:
+            at_vertex[v][source_labels[fi]] += area
+    label = {v: c.most_common(1)[0][0] for v, c in at_vertex.items()}
+    return [collections.Counter(label.get(image[v], -1) for v in f).most_common(1)[0][0] for f in target_faces]
