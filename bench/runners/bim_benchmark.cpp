@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
       std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec|humans|animals --out DIR [--limit N] [--stride K] "
                    "[--offset O] [--threads T] [--groups]\n"
                    "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G] [--feature-radius R]\n"
-                   "  [--selection rank-sum|area|confidence|confidence-distortion] (default: the library's)\n"
+                   "  [--selection adaptive|rank-sum|area|confidence|confidence-distortion] (default: the library's)\n"
                    "  [--no-refine] [--no-refinement-check] [--zoomout-sizes k0,kmax,step] [--zoomout-samples N] [--zoomout-exact] [--zoomout-radius R]\n"
                    "  [--zoomout-basis lanczos|galerkin[,M[,S]]] (default galerkin,600,1)\n";
       return 2;
@@ -152,8 +152,9 @@ int main(int argc, char** argv) {
   else if (selection == "confidence") options.selection = blended_selection::integrated_confidence;
   else if (selection == "rank-sum") options.selection = blended_selection::area_and_confidence_rank;
   else if (selection == "confidence-distortion") options.selection = blended_selection::confidence_and_distortion_rank;
+  else if (selection == "adaptive") options.selection = blended_selection::distortion_adaptive;
   else if (!selection.empty()) {
-    std::cerr << "--selection must be rank-sum, area, confidence or confidence-distortion\n";
+    std::cerr << "--selection must be adaptive, rank-sum, area, confidence or confidence-distortion\n";
     return 2;
   }
   if (max_eigenvectors > 0) options.max_eigenvectors = max_eigenvectors;

@@ -27,6 +27,7 @@ using namespace shapestruct::cli;
 
 /// The names `match --selection` gives the selection rules (blended_selection).
 constexpr std::pair<const char*, blended_selection> selection_names[] = {
+    {"adaptive", blended_selection::distortion_adaptive},
     {"confidence-distortion", blended_selection::confidence_and_distortion_rank},
     {"confidence", blended_selection::integrated_confidence},
     {"area", blended_selection::area_score},
@@ -277,12 +278,14 @@ command_fn setup_match(CLI::App& app) {
                  "AGD maxima closer than R (units of sqrt(area)) are one feature (default 0.15)")
       ->type_name("R");
   app.add_option("--selection", m->selection,
-                 "how one blended map is chosen among the groups': the lowest sum of its ranks by\n"
-                 "integrated confidence and by geodesic distortion, confidence alone (the chapter's),\n"
-                 "area preservation alone, or the sum of the ranks by area and confidence (default " +
+                 "how one blended map is chosen among the groups': confidence alone unless the most\n"
+                 "confident map distorts geodesic distances clearly (then as confidence-distortion), the\n"
+                 "lowest sum of its ranks by integrated confidence and by geodesic distortion, confidence\n"
+                 "alone (the chapter's), area preservation alone, or the sum of the ranks by area and\n"
+                 "confidence (default " +
                      selection_name(blended_matcher_options{}.selection) + ")")
-      ->type_name("confidence-distortion|confidence|area|area-confidence")
-      ->check(one_of({"confidence-distortion", "confidence", "area", "area-confidence"}));
+      ->type_name("adaptive|confidence-distortion|confidence|area|area-confidence")
+      ->check(one_of({"adaptive", "confidence-distortion", "confidence", "area", "area-confidence"}));
   app.add_option("--max-maps", m->max_maps, "candidate conformal maps kept, the most confident (default 10000)")
       ->type_name("N")
       ->check(at_least(1LL));

@@ -125,7 +125,8 @@ TEST_CASE("blended_matcher selects by the chosen rule: area score, integrated co
   auto o = small_options();
   const auto sm = blended_matcher<>(o).prepare(m);
   for (const auto rule : {blended_selection::area_score, blended_selection::integrated_confidence,
-                          blended_selection::area_and_confidence_rank, blended_selection::confidence_and_distortion_rank}) {
+                          blended_selection::area_and_confidence_rank, blended_selection::confidence_and_distortion_rank,
+                          blended_selection::distortion_adaptive}) {
     o.selection = rule;
     const auto r = blended_matcher<>(o).match(sm, sm);
     REQUIRE(r.blended.size() >= 2);  // several groups, so the rules have something to choose between
@@ -167,6 +168,41 @@ TEST_CASE("blended_matcher's confidence_and_distortion_rank sums the ranks by co
     CHECK(b.selection_rank >= chosen.selection_rank);
     if (b.selection_rank == chosen.selection_rank) CHECK(b.selection_score <= chosen.selection_score);  // ties: area
   }
+}
+
+TEST_CASE("blended_matcher's distortion_adaptive ranks by distortion only when the most confident map is distorted") {
+  const auto m = test::front_back_creature(3);
+  auto stretched = m;  // as above: the most confident map is not the least distorted one
+  stretched.V.col(0) *= 1.6;
+  auto o = small_options();
+  const blended_matcher<> matcher(o);
+  const auto sa = matcher.prepare(m), sb = matcher.prepare(stretched);
+  const auto selected_with = [&](blended_selection rule, double threshold) {
+    auto oo = o;
+    oo.selection = rule;
+    oo.near_isometric_distortion = threshold;
+    return blended_matcher<>(oo).match(sa, sb);
+  };
+  const auto by_confidence = selected_with(blended_selection::integrated_confidence, 0);
+  const auto by_rank_sum = selected_with(blended_selection::confidence_and_distortion_rank, 0);
+  const auto ranks = [](const blended_match_result<double>& r) {
+    std::vector<index_t> out;
+    for (const auto& b : r.blended) out.push_back(b.selection_rank);
+    return out;
+  };
+  REQUIRE(ranks(by_confidence) != ranks(by_rank_sum));  // so which rule the gate applies can be seen
+  const double d = by_confidence.blended[static_cast<std::size_t>(by_confidence.selected)].geodesic_distortion;
+  REQUIRE(d > 0);
+  // At or above the most confident map's distortion the pair counts as near-isometric: confidence alone.
+  for (const double threshold : {d, 2 * d}) {
+    const auto gated = selected_with(blended_selection::distortion_adaptive, threshold);
+    CHECK(gated.selected == by_confidence.selected);
+    CHECK(ranks(gated) == ranks(by_confidence));
+  }
+  // Below it the distortion is evidence too: the rank sum's choice, with its ranks.
+  const auto gated = selected_with(blended_selection::distortion_adaptive, 0.99 * d);
+  CHECK(gated.selected == by_rank_sum.selected);
+  CHECK(ranks(gated) == ranks(by_rank_sum));
 }
 
 TEST_CASE("blended_matcher tells a map from its intrinsic flip by convexity (dome vs dimple)") {

@@ -178,7 +178,7 @@ run_cli_error("bad --refine" "--refine: must be zoomout or none, got 'bogus'"
               match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --refine bogus)
 run_cli_error("bad --refine-basis" "--refine-basis: must be >= 2, got 1"
               match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --refine-basis 1)
-run_cli_error("bad --selection" "--selection: must be confidence-distortion, confidence, area or area-confidence, got 'bogus'"
+run_cli_error("bad --selection" "--selection: must be adaptive, confidence-distortion, confidence, area or area-confidence, got 'bogus'"
               match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --selection bogus)
 # Every selection rule gives a map of the same length (which rule wins is measured in docs/blended_maps.md).
 run_cli(0 out match ${first_mesh} ${second_mesh} -o ${WORK}/by_distortion.map --refine none --selection confidence-distortion)

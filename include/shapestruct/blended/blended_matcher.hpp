@@ -44,11 +44,10 @@ enum class blended_selection {
   /// --groups`) it had lower or equal mean error and no more flips on the human and SCAPE pairs measured, and
   /// fixed the TOSCA michael3->michael1 flip (the measurements: docs/blended_maps.md).
   area_and_confidence_rank,
-  /// The highest integrated confidence alone (the chapter's rule, ch. 3.3.5; ties: higher area score). The
-  /// default: once the true group gets its maps (distance-preserving pruning, one feature per hand) it has fewer
-  /// flips than the rank sum. Against the rank sum on all five benchmark lists: more accurate with fewer flipped
-  /// pairs on SCAPE and humans, level on TOSCA, less accurate on SHREC'07 and animals (the measurements:
-  /// docs/blended_maps.md).
+  /// The highest integrated confidence alone (the chapter's rule, ch. 3.3.5; ties: higher area score). Once the
+  /// true group gets its maps (distance-preserving pruning, one feature per hand) it has fewer flips than the
+  /// rank sum. Against the rank sum on all five benchmark lists: more accurate with fewer flipped pairs on SCAPE
+  /// and humans, level on TOSCA, less accurate on SHREC'07 and animals (the measurements: docs/blended_maps.md).
   integrated_confidence,
   /// The lowest sum of the map's rank by integrated confidence and its rank by geodesic distortion (lowest first;
   /// ties: higher area score). Blended maps assume near-isometry: a head-to-tail swap of a four-legged animal can
@@ -57,6 +56,11 @@ enum class blended_selection {
   /// near-isometric ones (SCAPE, TOSCA, humans), where a left-right flip is often a little less distorted than the
   /// truth (the measurements: docs/blended_maps.md).
   confidence_and_distortion_rank,
+  /// The default: integrated_confidence when the most confident map is near-isometric (its geodesic distortion at most
+  /// blended_matcher_options::near_isometric_distortion), confidence_and_distortion_rank otherwise. Distortion
+  /// only tells the truth from a head-to-tail swap when the pair is far from isometric; on near-isometric pairs
+  /// a left-right flip is as often the less distorted map (the measurements: docs/blended_maps.md).
+  distortion_adaptive,
 };
 
 /// Options of blended_matcher (dissertation ch. 3 defaults).
@@ -83,7 +87,11 @@ struct blended_matcher_options {
   index_t score_faces = 6000;
   bool full_maps_for_all_groups = false;  ///< also fill blended_candidate::map of the groups not selected
   /// How the blended map is selected among the groups' maps (flip disambiguation, see blended_selection).
-  blended_selection selection = blended_selection::integrated_confidence;
+  blended_selection selection = blended_selection::distortion_adaptive;
+  /// blended_selection::distortion_adaptive ranks by distortion too when the most confident map's geodesic
+  /// distortion exceeds this (unit-area units; SCAPE's true maps are at 0.03-0.05, four-legged animals across
+  /// species at 0.05-0.10).
+  double near_isometric_distortion = 0.055;
   /// Optional extrinsic tie-break: the area term of the selection is score - convexity_weight *
   /// convexity_mismatch (blended_candidate). Intrinsic measures cannot tell a map from its intrinsic 180-degree
   /// flip when both are near-isometric; the convexity mismatch (bumps must map to bumps) can, and weight 5 picks
@@ -130,7 +138,7 @@ struct blended_candidate {
   /// smallest. With blended_selection::area_score it is the rank by selection_score alone, with
   /// blended_selection::integrated_confidence the rank by confidence_integral alone, with
   /// blended_selection::confidence_and_distortion_rank the sum of the ranks by confidence_integral and by
-  /// geodesic_distortion.
+  /// geodesic_distortion (with blended_selection::distortion_adaptive either of the last two).
   index_t selection_rank = 0;
   /// The blended map (source vertices -> target surface points); empty for unselected groups unless
   /// blended_matcher_options::full_maps_for_all_groups (blended_matcher::blend_group rebuilds it).
@@ -504,21 +512,25 @@ class blended_matcher {
       rank_by([&](index_t x, index_t y) {
         return maps[static_cast<std::size_t>(x)].confidence_integral > maps[static_cast<std::size_t>(y)].confidence_integral;
       });
-    if (rule == blended_selection::confidence_and_distortion_rank) {
-      const auto distortion = [&](index_t g) {  // a map whose distortion could not be measured ranks last
-        const double d = maps[static_cast<std::size_t>(g)].geodesic_distortion;
-        return std::isfinite(d) ? d : std::numeric_limits<double>::infinity();
-      };
-      rank_by([&](index_t x, index_t y) { return distortion(x) < distortion(y); });
-    }
-    index_t best = 0;
-    for (index_t g = 1; g < n; ++g) {
-      const auto& c = maps[static_cast<std::size_t>(g)];
-      const auto& b = maps[static_cast<std::size_t>(best)];
-      if (c.selection_rank < b.selection_rank || (c.selection_rank == b.selection_rank && c.selection_score > b.selection_score))
-        best = g;
-    }
-    return best;
+    const auto best_ranked = [&] {
+      index_t best = 0;
+      for (index_t g = 1; g < n; ++g) {
+        const auto& c = maps[static_cast<std::size_t>(g)];
+        const auto& b = maps[static_cast<std::size_t>(best)];
+        if (c.selection_rank < b.selection_rank || (c.selection_rank == b.selection_rank && c.selection_score > b.selection_score))
+          best = g;
+      }
+      return best;
+    };
+    const auto distortion = [&](index_t g) {  // a map whose distortion could not be measured ranks last
+      const double d = maps[static_cast<std::size_t>(g)].geodesic_distortion;
+      return std::isfinite(d) ? d : std::numeric_limits<double>::infinity();
+    };
+    const bool by_distortion = rule == blended_selection::confidence_and_distortion_rank ||
+                               (rule == blended_selection::distortion_adaptive && n > 0 &&
+                                distortion(best_ranked()) > options_.near_isometric_distortion);
+    if (by_distortion) rank_by([&](index_t x, index_t y) { return distortion(x) < distortion(y); });
+    return best_ranked();
   }
 
   /// The image of every even sample of `a` as a target vertex (the nearest corner; no_index where unmapped).
