@@ -73,14 +73,29 @@ def rank_sum(measures, tolerance=1.0):
     return rule
 
 
+def distortion_gated(threshold, inner):
+    """blended_selection::distortion_adaptive: confidence alone unless the most confident map's distortion
+    exceeds `threshold`, then `inner`."""
+    most_confident = by_confidence_within(float("inf"))
+
+    def rule(groups):
+        chosen = most_confident(groups)
+        return inner(groups) if distortion(chosen) > threshold else chosen
+    return rule
+
+
 RULES = [
-    ("integrated confidence (default)", by_confidence_within(float("inf"))),
+    ("integrated confidence (the chapter's)", by_confidence_within(float("inf"))),
     ("within 1.05 x the lowest distortion, then confidence", by_confidence_within(1.05)),
     ("within 1.3 x the lowest distortion, then confidence", by_confidence_within(1.3)),
     ("confidence - 3 x distortion", linear(3.0)),
     ("rank by confidence + rank by distortion", rank_sum(["confidence", "distortion"])),
     ("the same, distortions within 10 % tied", rank_sum(["confidence", "distortion"], tolerance=1.1)),
     ("rank by confidence + rank by area", rank_sum(["area", "confidence"])),
+] + [
+    (f"confidence, the rank sum above {t} distortion", distortion_gated(t, rank_sum(["confidence", "distortion"])))
+    for t in (0.045, 0.05, 0.055, 0.06)
+] + [
     ("best group (oracle)", lambda groups: min(groups, key=lambda g: value(g, "mean"))),
 ]
 
