@@ -89,8 +89,8 @@ struct blended_matcher_options {
   /// How the blended map is selected among the groups' maps (flip disambiguation, see blended_selection).
   blended_selection selection = blended_selection::distortion_adaptive;
   /// blended_selection::distortion_adaptive ranks by distortion too when the most confident map's geodesic
-  /// distortion exceeds this (unit-area units; the selected maps of SCAPE's pairs are at 0.03-0.06, of
-  /// four-legged animals across species at 0.05-0.12). Swept on the five benchmark lists: lower thresholds
+  /// distortion exceeds this (unit-area units; the most confident maps of SCAPE's pairs are at 0.03-0.06, of
+  /// four-legged animals across species at 0.04-0.11). Swept on the five benchmark lists: lower thresholds
   /// flip SCAPE and cross-subject human pairs, higher ones give up the animals' gain (docs/blended_maps.md).
   double near_isometric_distortion = 0.065;
   /// Optional extrinsic tie-break: the area term of the selection is score - convexity_weight *
