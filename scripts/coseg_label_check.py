@@ -9,28 +9,20 @@ takes the label with the most incident face area there, every target face the ma
 images, and the score is the target's area labelled as its ground truth says. The runner labels each face through
 its centroid's nearest sample instead, so the two agree to the part borders, not digit for digit.
 """
-import argparse
 import os
 
-from label_transfer import fuzzy_vertex_map, read_seg, transferred_face_labels
+from label_transfer import check_arguments, fuzzy_vertex_map, read_seg, transferred_face_labels
 from off_mesh import face_area, read_off
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("tool")
-    ap.add_argument("chairs")
-    ap.add_argument("fuzzy_out")
-    ap.add_argument("pairs", nargs="+", help="TARGET:SOURCE shape ids")
-    ap.add_argument("--refined", action="store_true", help="pass --refined to fuzzy-map")
-    a = ap.parse_args()
-    for pair in a.pairs:
-        t, s = pair.split(":")
+    a = check_arguments("the COSEG chairs folder (its shapes/ and gt/)")
+    for t, s in a.pairs:
         image = fuzzy_vertex_map(a.tool, a.fuzzy_out, t, s, a.refined)
-        VT, FT = read_off(os.path.join(a.chairs, "shapes", t + ".off"))
-        VS, FS = read_off(os.path.join(a.chairs, "shapes", s + ".off"))
-        LT = read_seg(os.path.join(a.chairs, "gt", t + ".seg"))
-        LS = read_seg(os.path.join(a.chairs, "gt", s + ".seg"))
+        VT, FT = read_off(os.path.join(a.data, "shapes", t + ".off"))
+        VS, FS = read_off(os.path.join(a.data, "shapes", s + ".off"))
+        LT = read_seg(os.path.join(a.data, "gt", t + ".seg"))
+        LS = read_seg(os.path.join(a.data, "gt", s + ".seg"))
         labels = transferred_face_labels(VS, FS, LS, FT, image)
         right = total = 0.0
         for fi, f in enumerate(FT):

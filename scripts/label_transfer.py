@@ -1,10 +1,25 @@
 """Part labels carried through a dense vertex map, for the check scripts beside this file (they import it)."""
+import argparse
 import collections
 import os
 import subprocess
 import tempfile
 
 from off_mesh import face_area
+
+
+def check_arguments(data_help):
+    """The check scripts' common command line: the tool, a data folder, a `fuzzy` output folder, TARGET:SOURCE
+    pairs and --refined; returns the parsed arguments, with `pairs` as (target, source) tuples."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("tool", help="the shapestruct executable")
+    ap.add_argument("data", help=data_help)
+    ap.add_argument("fuzzy_out", help="the output folder of `shapestruct fuzzy` on those shapes")
+    ap.add_argument("pairs", nargs="+", help="TARGET:SOURCE shape ids")
+    ap.add_argument("--refined", action="store_true", help="pass --refined to fuzzy-map")
+    a = ap.parse_args()
+    a.pairs = [tuple(pair.split(":", 1)) for pair in a.pairs]
+    return a
 
 
 def read_seg(path):

@@ -12,14 +12,13 @@ the two agree (both in one segment, or both split), each pair weighted by the pr
 averaged over the humans. The runner labels each face through its centroid's nearest sample instead, so the two
 agree to the part borders, not digit for digit.
 """
-import argparse
 import collections
 import glob
 import itertools
 import os
 import random
 
-from label_transfer import fuzzy_vertex_map, read_seg, transferred_face_labels
+from label_transfer import check_arguments, fuzzy_vertex_map, read_seg, transferred_face_labels
 from off_mesh import face_area, read_off
 
 
@@ -46,25 +45,18 @@ def brute_force_rand_index(a, b, w):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("tool")
-    ap.add_argument("psb")
-    ap.add_argument("fuzzy_out")
-    ap.add_argument("pairs", nargs="+", help="TARGET:SOURCE mesh ids")
-    ap.add_argument("--refined", action="store_true", help="pass --refined to fuzzy-map")
-    a = ap.parse_args()
+    a = check_arguments("the PSB data folder (its off/ and seg/Benchmark/)")
     rng = random.Random(1)  # the pair-count identity checked against the definition on a small random case
     x, y, w = ([rng.randrange(3) for _ in range(40)], [rng.randrange(4) for _ in range(40)], [rng.random() for _ in range(40)])
     assert abs(rand_index(x, y, w) - brute_force_rand_index(x, y, w)) < 1e-12
-    for pair in a.pairs:
-        t, s = pair.split(":")
+    for t, s in a.pairs:
         image = fuzzy_vertex_map(a.tool, a.fuzzy_out, t, s, a.refined)
-        VT, FT = read_off(os.path.join(a.psb, "off", t + ".off"))
-        VS, FS = read_off(os.path.join(a.psb, "off", s + ".off"))
-        LS = read_seg(os.path.join(a.psb, "seg", "Benchmark", s, s + "_0.seg"))
+        VT, FT = read_off(os.path.join(a.data, "off", t + ".off"))
+        VS, FS = read_off(os.path.join(a.data, "off", s + ".off"))
+        LS = read_seg(os.path.join(a.data, "seg", "Benchmark", s, s + "_0.seg"))
         labels = transferred_face_labels(VS, FS, LS, FT, image)
         area = [face_area(VT, f) for f in FT]
-        humans = sorted(glob.glob(os.path.join(a.psb, "seg", "Benchmark", t, t + "_*.seg")))
+        humans = sorted(glob.glob(os.path.join(a.data, "seg", "Benchmark", t, t + "_*.seg")))
         scores = [rand_index(labels, read_seg(h), area) for h in humans]
         print(f"target {t} from {s}: {sum(scores) / len(scores):.4f} (mean over {len(scores)} human segmentations)")
 
