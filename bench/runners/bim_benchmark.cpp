@@ -66,7 +66,7 @@ std::string fmt(double x, int prec = 4) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   std::string data_dir = std::getenv("SHAPESTRUCT_DATA") ? std::getenv("SHAPESTRUCT_DATA") : "";
   std::string set = "scape", out_dir = "bim_results";
   int limit = -1, stride = 1, offset = 0, threads = 0;
@@ -122,7 +122,7 @@ int main(int argc, char** argv) {
       std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec|humans|animals --out DIR [--limit N] [--stride K] "
                    "[--offset O] [--threads T] [--groups]\n"
                    "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G] [--feature-radius R]\n"
-                   "  [--selection adaptive|rank-sum|area|confidence|confidence-distortion] (default: the library's)\n"
+                   "  [--selection adaptive|confidence-distortion|confidence|area|area-confidence] (as `shapestruct match`; default: the library's)\n"
                    "  [--no-refine] [--no-refinement-check] [--zoomout-sizes k0,kmax,step] [--zoomout-samples N] [--zoomout-exact] [--zoomout-radius R]\n"
                    "  [--zoomout-basis lanczos|galerkin[,M[,S]]] (default galerkin,600,1)\n";
       return 2;
@@ -132,11 +132,6 @@ int main(int argc, char** argv) {
     std::cerr << "need --data (or $SHAPESTRUCT_DATA) and --set scape|tosca|shrec|humans|animals\n";
     return 2;
   }
-  const fs::path data(data_dir);
-  const set_info info = sets.at(set);
-  fs::create_directories(out_dir);
-  const auto pairs = read_bim_query((data / "Results" / info.query).string());
-
   blended_matcher_options options;
   options.threads = threads;
   // The benchmark's TOSCA meshes have small holes and SHREC'07 some stray pieces: the runner turns the repairs on
@@ -150,13 +145,18 @@ int main(int argc, char** argv) {
   if (feature_radius > 0) options.shape.feature_radius = feature_radius;
   if (selection == "area") options.selection = blended_selection::area_score;
   else if (selection == "confidence") options.selection = blended_selection::integrated_confidence;
-  else if (selection == "rank-sum") options.selection = blended_selection::area_and_confidence_rank;
+  else if (selection == "area-confidence" || selection == "rank-sum")  // rank-sum: its name in older docs
+    options.selection = blended_selection::area_and_confidence_rank;
   else if (selection == "confidence-distortion") options.selection = blended_selection::confidence_and_distortion_rank;
   else if (selection == "adaptive") options.selection = blended_selection::distortion_adaptive;
   else if (!selection.empty()) {
-    std::cerr << "--selection must be adaptive, rank-sum, area, confidence or confidence-distortion\n";
+    std::cerr << "--selection must be adaptive, confidence-distortion, confidence, area or area-confidence\n";
     return 2;
   }
+  const fs::path data(data_dir);
+  const set_info info = sets.at(set);
+  fs::create_directories(out_dir);
+  const auto pairs = read_bim_query((data / "Results" / info.query).string());
   if (max_eigenvectors > 0) options.max_eigenvectors = max_eigenvectors;
   if (max_groups > 0) options.max_groups = max_groups;
   options.refine = refine;
@@ -415,4 +415,13 @@ int main(int argc, char** argv) {
             << fmt(o_flip.within_025, 3) << "/" << fmt(o_flip.mean) << " stored " << fmt(p_flip.within_025, 3) << "/"
             << fmt(p_flip.mean) << " | median time " << fmt(median(times), 2) << " s\n";
   return failed > 0 && done == 0 ? 1 : 0;
+}
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {  // unreadable data, a bad number after a flag
+    std::cerr << "run_bim_benchmark: " << e.what() << "\n";
+    return 1;
+  }
 }
