@@ -109,7 +109,7 @@ struct blended_matcher_options {
   /// SCAPE pairs (it lowered the error of 68), while on SHREC'07 human 8 -> 13, where it doubled the error at the
   /// feature points, it raised it 1.75x (docs/blended_maps.md). 0 = always keep the refinement.
   double max_refined_distortion_ratio = 1.5;
-  int threads = 0;             ///< std::threads, 0 = all cores; the result does not depend on it
+  int threads = 0;  ///< std::threads, 0 = all cores; the result does not depend on it
   /// Progress callback (stage name, seconds spent in it); the library never prints.
   std::function<void(const std::string&, double)> on_stage{};
 };
@@ -117,9 +117,9 @@ struct blended_matcher_options {
 /// One group of consistent candidate maps (binary weights) and the blended map it defines.
 template <class Scalar = double>
 struct blended_candidate {
-  std::vector<index_t> maps;   ///< indices into blended_match_result::candidates
-  Scalar eigen_weight = 0;     ///< sum of |eigenvector entries| of the group's maps
-  Scalar score = 0;            ///< integrated area preservation of the blended map, in [0, 1] (higher is better)
+  std::vector<index_t> maps;  ///< indices into blended_match_result::candidates
+  Scalar eigen_weight = 0;    ///< sum of |eigenvector entries| of the group's maps
+  Scalar score = 0;           ///< integrated area preservation of the blended map, in [0, 1] (higher is better)
   /// Integrated confidence of the group (ch. 3.3.5): mean over the even samples of the confidence-weighted mean
   /// confidence of the group's maps, in [0, 1].
   Scalar confidence_integral = 0;
@@ -149,13 +149,13 @@ struct blended_candidate {
 /// Result of blended_matcher::match. Models MatchResult.
 template <class Scalar = double>
 struct blended_match_result {
-  surface_map<Scalar> map;                          ///< the selected blended map (highest score)
-  status info = status::ok;                         ///< not_converged if the eigen-solver did not converge
-  std::vector<candidate_map<Scalar>> candidates;    ///< all candidate conformal maps m_i
-  matrix_x<Scalar> confidence;                      ///< (#candidates x #samples) c_i(p)
-  vector_x<Scalar> eigenvalues;                     ///< leading eigenvalues of S~ (descending)
-  std::vector<blended_candidate<Scalar>> blended;   ///< every blended map built, with its score
-  index_t selected = no_index;                      ///< index of the selected blended map in `blended`
+  surface_map<Scalar> map;                              ///< the selected blended map (highest score)
+  status info = status::ok;                             ///< not_converged if the eigen-solver did not converge
+  std::vector<candidate_map<Scalar>> candidates;        ///< all candidate conformal maps m_i
+  matrix_x<Scalar> confidence;                          ///< (#candidates x #samples) c_i(p)
+  vector_x<Scalar> eigenvalues;                         ///< leading eigenvalues of S~ (descending)
+  std::vector<blended_candidate<Scalar>> blended;       ///< every blended map built, with its score
+  index_t selected = no_index;                          ///< index of the selected blended map in `blended`
   std::vector<std::pair<std::string, double>> timings;  ///< seconds per stage
   /// With refinement: the refiner's map (kept in `map` only if accepted), its geodesic distortion at the even
   /// samples (compare with blended[selected].geodesic_distortion), and whether it was accepted.
@@ -215,8 +215,8 @@ class blended_matcher {
     auto oa = options_.shape, ob = options_.shape;
     oa.threads = std::max(1, threads / 2);
     ob.threads = std::max(1, threads - threads / 2);
-    auto future_a = std::async(threads > 1 ? std::launch::async : std::launch::deferred,
-                               [&] { return make_blended_shape(a, oa); });
+    auto future_a =
+        std::async(threads > 1 ? std::launch::async : std::launch::deferred, [&] { return make_blended_shape(a, oa); });
     std::optional<blended_shape<double>> prepared_b;
     std::exception_ptr b_failed;
     try {
@@ -297,8 +297,9 @@ class blended_matcher {
       const surface_map<Scalar> refined = refiner_.refine(a.mesh(), b.mesh(), internal, options_.threads);
       out.refined_distortion = shapestruct::geodesic_distortion(a, b, sample_images(a, b, refined.points));
       out.refined_map = to_input_numbering(a, b, refined);
-      out.refinement_accepted = !(options_.max_refined_distortion_ratio > 0) ||
-                                out.refined_distortion <= options_.max_refined_distortion_ratio * chosen.geodesic_distortion;
+      out.refinement_accepted =
+          !(options_.max_refined_distortion_ratio > 0) ||
+          out.refined_distortion <= options_.max_refined_distortion_ratio * chosen.geodesic_distortion;
       if (out.refinement_accepted) out.map = out.refined_map;
       stage("refinement", t);
     }
@@ -337,7 +338,8 @@ class blended_matcher {
 
   /// Ch. 3.3.4 "Processing eigenvectors": eigenvectors within the eigenvalue fraction; in each, the high
   /// entries (by |entry|, descending) join the first group they do not conflict with, or start a new one.
-  std::vector<group> make_groups(const std::vector<candidate_map<double>>& maps, const eigenpairs_result<double>& eig) const {
+  std::vector<group> make_groups(const std::vector<candidate_map<double>>& maps,
+                                 const eigenpairs_result<double>& eig) const {
     std::vector<group> groups;
     std::vector<char> used(maps.size(), 0);
     const index_t ne = eig.values.size();
@@ -381,7 +383,8 @@ class blended_matcher {
     for (const auto& g : groups)
       if (static_cast<index_t>(g.maps.size()) >= options_.min_group_size) kept.push_back(g);
     if (kept.empty() && !groups.empty()) kept.push_back(groups.front());
-    if (static_cast<index_t>(kept.size()) > options_.max_groups) kept.resize(static_cast<std::size_t>(options_.max_groups));
+    if (static_cast<index_t>(kept.size()) > options_.max_groups)
+      kept.resize(static_cast<std::size_t>(options_.max_groups));
     for (auto& g : kept) std::sort(g.maps.begin(), g.maps.end());
     return kept;
   }
@@ -391,7 +394,8 @@ class blended_matcher {
   /// With score_only, the map is evaluated only at the corners of the scored faces and not stored.
   /// Returns the map in the shapes' internal numbering (empty with score_only); bc.map is in the input numbering.
   surface_map<double> blend(const blended_shape<double>& a, const blended_shape<double>& b,
-                            const blended_match_result<double>& r, blended_candidate<double>& bc, bool score_only) const {
+                            const blended_match_result<double>& r, blended_candidate<double>& bc,
+                            bool score_only) const {
     using Scalar = double;
     const auto& Va = a.mesh().V;
     const auto& Fa = a.mesh().F;
@@ -418,29 +422,30 @@ class blended_matcher {
       todo.resize(static_cast<std::size_t>(nv));
       std::iota(todo.begin(), todo.end(), index_t(0));
     }
-    detail::parallel_for(static_cast<index_t>(todo.size()), detail::resolve_threads(options_.threads, "blended intrinsic maps"), [&](index_t ti) {
-      const index_t v = todo[static_cast<std::size_t>(ti)];
-      const auto z = fa.coordinate(v);
-      vec3<Scalar> acc = vec3<Scalar>::Zero();
-      Scalar wsum = 0, best_c = -1;
-      vec3<Scalar> best_p = vec3<Scalar>::Zero();
-      for (index_t i : bc.maps) {
-        Scalar c = 0;
-        for (index_t k = 0; k < idx.cols(); ++k) c += wts(v, k) * r.confidence(i, idx(v, k));
-        const auto q = fb.locate(r.candidates[static_cast<std::size_t>(i)].transform(z));
-        const vec3<Scalar> p = q.position(Vb, Fb);
-        if (c > best_c) {
-          best_c = c;
-          best_p = p;
-        }
-        acc += c * p;
-        wsum += c;
-      }
-      const vec3<Scalar> centroid = wsum > Scalar(1e-12) ? vec3<Scalar>(acc / wsum) : best_p;
-      const auto hit = b.closest_points().query(centroid);
-      pts[static_cast<std::size_t>(v)] = hit.location;
-      img.row(v) = hit.point.transpose();
-    });
+    detail::parallel_for(static_cast<index_t>(todo.size()),
+                         detail::resolve_threads(options_.threads, "blended intrinsic maps"), [&](index_t ti) {
+                           const index_t v = todo[static_cast<std::size_t>(ti)];
+                           const auto z = fa.coordinate(v);
+                           vec3<Scalar> acc = vec3<Scalar>::Zero();
+                           Scalar wsum = 0, best_c = -1;
+                           vec3<Scalar> best_p = vec3<Scalar>::Zero();
+                           for (index_t i : bc.maps) {
+                             Scalar c = 0;
+                             for (index_t k = 0; k < idx.cols(); ++k) c += wts(v, k) * r.confidence(i, idx(v, k));
+                             const auto q = fb.locate(r.candidates[static_cast<std::size_t>(i)].transform(z));
+                             const vec3<Scalar> p = q.position(Vb, Fb);
+                             if (c > best_c) {
+                               best_c = c;
+                               best_p = p;
+                             }
+                             acc += c * p;
+                             wsum += c;
+                           }
+                           const vec3<Scalar> centroid = wsum > Scalar(1e-12) ? vec3<Scalar>(acc / wsum) : best_p;
+                           const auto hit = b.closest_points().query(centroid);
+                           pts[static_cast<std::size_t>(v)] = hit.location;
+                           img.row(v) = hit.point.transpose();
+                         });
     // Score: area-weighted mean of 2 / (r + 1/r) over the source faces, r = image area / face area (both unit).
     Scalar score = 0, scored_area = 0;
     for (index_t f = 0; f < Fa.rows(); f += face_stride) {
@@ -501,7 +506,8 @@ class blended_matcher {
     const auto rank_by = [&](auto better) {
       std::iota(order.begin(), order.end(), index_t(0));
       std::stable_sort(order.begin(), order.end(), better);
-      for (index_t r = 0; r < n; ++r) maps[static_cast<std::size_t>(order[static_cast<std::size_t>(r)])].selection_rank += r;
+      for (index_t r = 0; r < n; ++r)
+        maps[static_cast<std::size_t>(order[static_cast<std::size_t>(r)])].selection_rank += r;
     };
     for (auto& m : maps) m.selection_rank = 0;
     const auto rule = options_.selection;
@@ -511,14 +517,16 @@ class blended_matcher {
       });
     if (rule != blended_selection::area_score)
       rank_by([&](index_t x, index_t y) {
-        return maps[static_cast<std::size_t>(x)].confidence_integral > maps[static_cast<std::size_t>(y)].confidence_integral;
+        return maps[static_cast<std::size_t>(x)].confidence_integral >
+               maps[static_cast<std::size_t>(y)].confidence_integral;
       });
     const auto best_ranked = [&] {
       index_t best = 0;
       for (index_t g = 1; g < n; ++g) {
         const auto& c = maps[static_cast<std::size_t>(g)];
         const auto& b = maps[static_cast<std::size_t>(best)];
-        if (c.selection_rank < b.selection_rank || (c.selection_rank == b.selection_rank && c.selection_score > b.selection_score))
+        if (c.selection_rank < b.selection_rank ||
+            (c.selection_rank == b.selection_rank && c.selection_score > b.selection_score))
           best = g;
       }
       return best;
