@@ -32,6 +32,7 @@
 #include "shapestruct/eval/geodesic_error.hpp"
 #include "shapestruct/io/bim_benchmark_files.hpp"
 #include "shapestruct/io/read_mesh.hpp"
+#include "runner_errors.hpp"
 
 namespace fs = std::filesystem;
 using namespace shapestruct;
@@ -418,10 +419,5 @@ static int run(int argc, char** argv) {
 }
 
 int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& e) {  // unreadable data, a bad number after a flag
-    std::cerr << "run_bim_benchmark: " << e.what() << "\n";
-    return 1;
-  }
+  return shapestruct::bench::run_reporting_errors("run_bim_benchmark", [&] { return run(argc, argv); });
 }

@@ -24,6 +24,7 @@
 #include "shapestruct/blended/blended_matcher.hpp"
 #include "shapestruct/eval/geodesic_error.hpp"
 #include "shapestruct/io/read_mesh.hpp"
+#include "runner_errors.hpp"
 
 namespace fs = std::filesystem;
 using namespace shapestruct;
@@ -60,7 +61,7 @@ std::string mesh_path(const fs::path& data, int id) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   std::string data_dir = std::getenv("SHAPESTRUCT_DATA") ? std::getenv("SHAPESTRUCT_DATA") : "";
   std::string out_dir = "faust_results";
   int threads = 0, limit = -1;
@@ -160,4 +161,8 @@ int main(int argc, char** argv) {
               << fmt(all.refined / all.pairs) << "\n";
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return shapestruct::bench::run_reporting_errors("run_faust_benchmark", [&] { return run(argc, argv); });
 }

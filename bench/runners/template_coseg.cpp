@@ -30,6 +30,7 @@
 #include "shapestruct/templates/template_fitter.hpp"
 #include "shapestruct/templates/template_initializer.hpp"
 #include "shapestruct/templates/template_learner.hpp"
+#include "runner_errors.hpp"
 
 namespace fs = std::filesystem;
 using namespace shapestruct;
@@ -42,7 +43,7 @@ std::string comma_joined(const std::set<std::string>& ids) {
 }
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   if (argc < 2) {
     std::cerr << "usage: run_template_coseg CLASS_DIR [--template T.json] [--points N] [--threads N] [--init] "
                  "[--parts K] [--oversegment M] [--segment-only] [--candidates N] [--learn-best N] "
@@ -183,4 +184,8 @@ int main(int argc, char** argv) {
   std::cout << "time: sampling " << secs(t0, t1) << " s, learning " << secs(t1, t2) << " s, final labeling "
             << secs(t2, t3) << " s (" << secs(t2, t3) * nthreads / double(files.size()) << " core-s per shape)\n";
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return shapestruct::bench::run_reporting_errors("run_template_coseg", [&] { return run(argc, argv); });
 }

@@ -14,11 +14,12 @@
 #include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/io/segmentation_file.hpp"
 #include "shapestruct/templates/collection_runner.hpp"
+#include "runner_errors.hpp"
 
 namespace fs = std::filesystem;
 using namespace shapestruct;
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   if (argc < 3) {
     std::cerr << "usage: run_template_eval SHAPES_DIR OUT_DIR [--gt GT_DIR] [--one-based]\n";
     return 2;
@@ -56,4 +57,8 @@ int main(int argc, char** argv) {
   std::cout << "accuracy (area, one mapping for the collection): " << 100.0 * acc.accuracy << " %\n";
   std::cout << "accuracy (area, mapping per shape): " << 100.0 * per_shape_sum / double(all.size()) << " %\n";
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return shapestruct::bench::run_reporting_errors("run_template_eval", [&] { return run(argc, argv); });
 }

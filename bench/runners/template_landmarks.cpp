@@ -36,6 +36,7 @@
 #include "shapestruct/templates/part_template.hpp"
 #include "shapestruct/templates/template_initializer.hpp"
 #include "shapestruct/templates/template_learner.hpp"
+#include "runner_errors.hpp"
 
 namespace fs = std::filesystem;
 using namespace shapestruct;
@@ -69,7 +70,7 @@ index_t nearest_sample(const shape_samples& s, const Eigen::Vector3d& q) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   if (argc < 2) {
     std::cerr << "usage: run_template_landmarks SHAPES_DIR [--template T.json] [--shapes N] [--pairs P] "
                  "[--points N] [--threads N] [--learn] [--seed S] [--curve FILE]\n";
@@ -199,4 +200,8 @@ int main(int argc, char** argv) {
       out << D[i] << ' ' << curve[i] << ' ' << floor_curve[i] << ' ' << base_curve[i] << "\n";
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return shapestruct::bench::run_reporting_errors("run_template_landmarks", [&] { return run(argc, argv); });
 }

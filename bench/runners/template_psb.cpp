@@ -14,11 +14,12 @@
 #include "shapestruct/geometry/mesh_measures.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/io/segmentation_file.hpp"
+#include "runner_errors.hpp"
 
 namespace fs = std::filesystem;
 using namespace shapestruct;
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   if (argc < 5) {
     std::cerr << "usage: run_template_psb PSB_DIR OUT_DIR FIRST_ID LAST_ID\n";
     return 2;
@@ -57,4 +58,8 @@ int main(int argc, char** argv) {
   }
   std::cout << "meshes " << n << "  RI ours " << ours / n << "  RI human-human " << (nh ? human / nh : 0) << "\n";
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return shapestruct::bench::run_reporting_errors("run_template_psb", [&] { return run(argc, argv); });
 }
