@@ -146,8 +146,7 @@ static int run(int argc, char** argv) {
   if (feature_radius > 0) options.shape.feature_radius = feature_radius;
   if (selection == "area") options.selection = blended_selection::area_score;
   else if (selection == "confidence") options.selection = blended_selection::integrated_confidence;
-  else if (selection == "area-confidence" || selection == "rank-sum")  // rank-sum: its name in older docs
-    options.selection = blended_selection::area_and_confidence_rank;
+  else if (selection == "area-confidence") options.selection = blended_selection::area_and_confidence_rank;
   else if (selection == "confidence-distortion") options.selection = blended_selection::confidence_and_distortion_rank;
   else if (selection == "adaptive") options.selection = blended_selection::distortion_adaptive;
   else if (!selection.empty()) {

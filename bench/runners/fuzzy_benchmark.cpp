@@ -73,6 +73,7 @@
 #include "shapestruct/io/segmentation_file.hpp"
 #include "shapestruct/io/write_mesh.hpp"
 #include "shapestruct/knn/knn_index.hpp"
+#include "runner_errors.hpp"
 
 namespace fs = std::filesystem;
 using namespace shapestruct;
@@ -990,7 +991,7 @@ int run_labels(const std::string& set, const fs::path& data, const fs::path& out
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int run(int argc, char** argv) {
   std::string data_dir = std::getenv("SHAPESTRUCT_DATA") ? std::getenv("SHAPESTRUCT_DATA") : "";
   std::string set, out = "fuzzy_results", classes;
   int threads = 0, count = 111;
@@ -1040,45 +1041,44 @@ int main(int argc, char** argv) {
     }
   }
   fs::create_directories(out);
-  try {
-    if (knobs.aligner != "extrinsic" && !(knobs.aligner == "truth" && (set == "chairs" || set == "airplanes"))) {
-      std::cerr << "--aligner must be extrinsic, or truth with --set chairs|airplanes (the only sets with true "
-                   "landmarks on every shape)\n";
+  if (knobs.aligner != "extrinsic" && !(knobs.aligner == "truth" && (set == "chairs" || set == "airplanes"))) {
+    std::cerr << "--aligner must be extrinsic, or truth with --set chairs|airplanes (the only sets with true "
+                 "landmarks on every shape)\n";
+    return 2;
+  }
+  if (set == "shrec") {
+    if (data_dir.empty()) {
+      std::cerr << "--set shrec needs --data DIR or $SHAPESTRUCT_DATA\n";
       return 2;
     }
-    if (set == "shrec") {
-      if (data_dir.empty()) {
-        std::cerr << "--set shrec needs --data DIR or $SHAPESTRUCT_DATA\n";
-        return 2;
-      }
-      return run_shrec(data_dir, out, classes, threads);
+    return run_shrec(data_dir, out, classes, threads);
+  }
+  if (set == "scape") {
+    if (data_dir.empty()) {
+      std::cerr << "--set scape needs --data DIR or $SHAPESTRUCT_DATA\n";
+      return 2;
     }
-    if (set == "scape") {
-      if (data_dir.empty()) {
-        std::cerr << "--set scape needs --data DIR or $SHAPESTRUCT_DATA\n";
-        return 2;
-      }
-      return run_scape(data_dir, out, threads);
+    return run_scape(data_dir, out, threads);
+  }
+  if (set == "humans" || set == "animals") {
+    if (data_dir.empty()) {
+      std::cerr << "--set " << set << " needs --data DIR or $SHAPESTRUCT_DATA\n";
+      return 2;
     }
-    if (set == "humans" || set == "animals") {
-      if (data_dir.empty()) {
-        std::cerr << "--set " << set << " needs --data DIR or $SHAPESTRUCT_DATA\n";
-        return 2;
-      }
-      return run_cross(set, data_dir, out, threads);
+    return run_cross(set, data_dir, out, threads);
+  }
+  if (set == "chairs" || set == "airplanes") return run_generated(set, count, out, threads, seed);
+  if (set == "coseg" || set == "psb") {
+    if (data_dir.empty()) {
+      std::cerr << "--set " << set << " needs --data DIR or $SHAPESTRUCT_DATA\n";
+      return 2;
     }
-    if (set == "chairs" || set == "airplanes") return run_generated(set, count, out, threads, seed);
-    if (set == "coseg" || set == "psb") {
-      if (data_dir.empty()) {
-        std::cerr << "--set " << set << " needs --data DIR or $SHAPESTRUCT_DATA\n";
-        return 2;
-      }
-      return run_labels(set, data_dir, out, classes, threads);
-    }
-  } catch (const std::exception& e) {
-    std::cerr << "run_fuzzy_benchmark: " << e.what() << "\n";
-    return 1;
+    return run_labels(set, data_dir, out, classes, threads);
   }
   std::cerr << "--set must be shrec, scape, humans, animals, chairs, airplanes, coseg or psb\n";
   return 2;
+}
+
+int main(int argc, char** argv) {
+  return shapestruct::bench::run_reporting_errors("run_fuzzy_benchmark", [&] { return run(argc, argv); });
 }
