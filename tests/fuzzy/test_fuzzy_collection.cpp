@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <filesystem>
+#include <mutex>
 #include <random>
 #include <set>
 #include <string>
@@ -157,6 +158,42 @@ TEST_CASE("correspondence matrix: edges naming missing shapes or wrong block siz
   negative.valuePtr()[0] = -1.0f;
   const std::vector<ss::correspondence_edge> n{{0, 1, &negative}};
   CHECK_THROWS_AS(ss::correspondence_matrix(counts, n), ss::invalid_input);
+}
+
+TEST_CASE("correspondence matrix: blocks fetched one at a time give the matrix of the edge list, whatever the threads") {
+  const int K = 5;
+  const std::vector<sparse_scores> scores{permutation_scores(identity(K), 0.7f), permutation_scores(reversed(K), 0.4f),
+                                          permutation_scores(identity(K), 0.9f)};
+  const std::vector<ss::index_t> counts{K, K, K, K};
+  const std::vector<std::pair<ss::index_t, ss::index_t>> pairs{{0, 1}, {1, 2}, {3, 2}};
+  std::vector<ss::correspondence_edge> edges;
+  for (std::size_t e = 0; e < pairs.size(); ++e) edges.push_back({pairs[e].first, pairs[e].second, &scores[e]});
+  const Eigen::MatrixXd listed = dense_of(ss::correspondence_matrix(counts, edges, 1));
+  for (const int threads : {1, 2, 3}) {
+    std::vector<int> fetched(pairs.size(), 0);
+    std::mutex m;
+    const ss::correspondence_matrix C(counts, pairs, [&](ss::index_t e) {
+      std::lock_guard lock(m);
+      ++fetched[std::size_t(e)];
+      return scores[std::size_t(e)];  // by value, as a block read from a cache file
+    }, threads);
+    CHECK((dense_of(C) - listed).cwiseAbs().maxCoeff() == 0.0);
+    CHECK(fetched == std::vector<int>(pairs.size(), 1));
+  }
+  // Two bad blocks: the first is named, whatever the thread count.
+  sparse_scores negative = scores[0];
+  negative.valuePtr()[0] = -1.0f;
+  const sparse_scores too_small = permutation_scores(identity(K - 1), 1.0f);
+  for (const int threads : {1, 3}) {
+    try {
+      (void)ss::correspondence_matrix(counts, pairs, [&](ss::index_t e) -> const sparse_scores& {
+        return e == 1 ? negative : e == 2 ? too_small : scores[0];
+      }, threads);
+      FAIL("no error");
+    } catch (const ss::invalid_input& error) {
+      CHECK(std::string(error.what()).find("edge 1 has a negative") != std::string::npos);
+    }
+  }
 }
 
 TEST_CASE("diffusion embedding: Lanczos agrees with a dense eigen-decomposition") {

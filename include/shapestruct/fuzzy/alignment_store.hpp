@@ -108,7 +108,10 @@ class alignment_store {
       if (auto cached = read_cached(requested[r])) keep(requested[r], std::move(*cached));
       else todo.push_back(requested[r]);
     }
-    std::vector<pair_alignment> results(todo.size());
+    // Unless in memory, only each finished pair's summary is kept: holding a whole batch until it ends (N M pairs
+    // in the first round) would grow memory with the collection as much as keeping every alignment.
+    std::vector<pair_alignment> results(in_memory_ ? todo.size() : 0);
+    std::vector<summary> finished(todo.size());
     std::vector<std::string> failure(todo.size());
     std::exception_ptr first_failure;
     std::mutex m;
@@ -123,7 +126,8 @@ class alignment_store {
         a.target = p.second;
         a.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (!folder_.empty()) write_pair_alignment(file_of(p), a);
-        results[std::size_t(i)] = std::move(a);
+        finished[std::size_t(i)] = summary_of(a);
+        if (in_memory_) results[std::size_t(i)] = std::move(a);
       } catch (const std::exception& e) {
         if (!share.distributed()) throw;  // one process: the loop stops and rethrows it as it is
         std::lock_guard lock(m);
@@ -134,8 +138,11 @@ class alignment_store {
       ++done;
       if (on_done) on_done(done, todo.size());
     });
-    for (std::size_t i = 0; i < todo.size(); ++i)
-      if (failure[i].empty()) keep(todo[i], std::move(results[i]));
+    for (std::size_t i = 0; i < todo.size(); ++i) {
+      if (!failure[i].empty()) continue;
+      summaries_[todo[i]] = finished[i];
+      if (in_memory_) alignments_.emplace(todo[i], std::move(results[i]));
+    }
     computed_ += todo.size();
     if (!share.distributed()) return;
     std::string failed_pair;  // the first failure of any process, in part order
@@ -163,8 +170,11 @@ class alignment_store {
     index_t alternatives = 0;
     index_t initial = 0;
   };
+  [[nodiscard]] static summary summary_of(const pair_alignment& a) {
+    return {static_cast<index_t>(a.alternatives.size()), a.initial};
+  }
   void keep(const key& k, pair_alignment&& a) {
-    summaries_[k] = {static_cast<index_t>(a.alternatives.size()), a.initial};
+    summaries_[k] = summary_of(a);
     if (in_memory_) alignments_.emplace(k, std::move(a));
   }
   /// The cached alignment of p, if its file exists and holds p; nullopt otherwise (also for a damaged file, the

@@ -3,9 +3,12 @@
 #pragma once
 
 #include <cmath>
+#include <concepts>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -44,40 +47,65 @@ class correspondence_matrix {
   ///         or a negative or non-finite score.
   correspondence_matrix(std::span<const index_t> sample_counts, std::span<const correspondence_edge> edges,
                         int threads = 0)
+      : correspondence_matrix(sample_counts, pairs_of(edges), [&edges](index_t e) -> const score_block& {
+          return *edges[std::size_t(e)].scores;
+        }, threads) {}
+
+  /// Builds C from edges whose score blocks are fetched one at a time, `score_block_of(e)` giving edge e's block
+  /// (by value or reference; called once per edge, from up to `threads` threads at once), so that only the blocks
+  /// of W are held, not a second copy of every score block (a collection's cache folder can serve them).
+  /// \param sample_counts K_i per shape  \param edges (source, target) per edge
+  /// \throws as the constructor above (the first bad edge is named, whatever the thread count), and whatever
+  ///         score_block_of throws.
+  template <class ScoreBlockOf>
+    requires std::invocable<ScoreBlockOf&, index_t>
+  correspondence_matrix(std::span<const index_t> sample_counts, std::span<const std::pair<index_t, index_t>> edges,
+                        ScoreBlockOf&& score_block_of, int threads = 0)
       : threads_(detail::resolve_threads(threads, "correspondence_matrix")) {
     const char* who = "correspondence_matrix";
     const index_t N = static_cast<index_t>(sample_counts.size());
     offset_.assign(static_cast<std::size_t>(N + 1), 0);
     for (index_t i = 0; i < N; ++i) offset_[std::size_t(i + 1)] = offset_[std::size_t(i)] + sample_counts[std::size_t(i)];
-    incident_.resize(static_cast<std::size_t>(N));
-    blocks_.reserve(edges.size());  // reserved: a sparse block is copied, not moved, when a vector grows
     for (std::size_t e = 0; e < edges.size(); ++e) {
-      const auto& E = edges[e];
-      if (E.source < 0 || E.source >= N || E.target < 0 || E.target >= N || E.source == E.target || !E.scores)
+      const auto [source, target] = edges[e];
+      if (source < 0 || source >= N || target < 0 || target >= N || source == target)
         throw invalid_input(input_error::bad_parameter, static_cast<index_t>(e),
-                            std::string(who) + ": edge " + std::to_string(e) + " names shapes " +
-                                std::to_string(E.source) + " and " + std::to_string(E.target) + " of " +
-                                std::to_string(N) + " (or has no scores)");
-      const auto& a = *E.scores;
-      if (a.rows() != sample_counts[std::size_t(E.source)] || a.cols() != sample_counts[std::size_t(E.target)])
-        throw invalid_input(input_error::size_mismatch, static_cast<index_t>(e),
-                            std::string(who) + ": edge " + std::to_string(e) + " has a " + std::to_string(a.rows()) +
-                                " x " + std::to_string(a.cols()) + " score block for shapes of " +
-                                std::to_string(sample_counts[std::size_t(E.source)]) + " and " +
-                                std::to_string(sample_counts[std::size_t(E.target)]) + " samples");
+                            std::string(who) + ": edge " + std::to_string(e) + " names shapes " + std::to_string(source) +
+                                " and " + std::to_string(target) + " of " + std::to_string(N) + " (or has no scores)");
+    }
+    blocks_.resize(edges.size());
+    std::vector<std::optional<invalid_input>> failed(edges.size());
+    detail::parallel_for(static_cast<index_t>(edges.size()), threads_, [&](index_t e) {
+      const auto [source, target] = edges[std::size_t(e)];
+      const auto& a = score_block_of(e);
+      if (a.rows() != sample_counts[std::size_t(source)] || a.cols() != sample_counts[std::size_t(target)]) {
+        failed[std::size_t(e)].emplace(input_error::size_mismatch, e,
+                                       std::string(who) + ": edge " + std::to_string(e) + " has a " +
+                                           std::to_string(a.rows()) + " x " + std::to_string(a.cols()) +
+                                           " score block for shapes of " + std::to_string(sample_counts[std::size_t(source)]) +
+                                           " and " + std::to_string(sample_counts[std::size_t(target)]) + " samples");
+        return;
+      }
       for (index_t k = 0; k < a.nonZeros(); ++k) {
         const float v = a.valuePtr()[k];
-        if (!(v >= 0.0f) || !std::isfinite(v))
-          throw invalid_input(input_error::bad_parameter, static_cast<index_t>(e),
-                              std::string(who) + ": edge " + std::to_string(e) + " has a negative or non-finite score");
+        if (!(v >= 0.0f) || !std::isfinite(v)) {
+          failed[std::size_t(e)].emplace(input_error::bad_parameter, e,
+                                         std::string(who) + ": edge " + std::to_string(e) +
+                                             " has a negative or non-finite score");
+          return;
+        }
       }
-      const block_matrix forward = row_normalised(a.cast<double>());
-      const block_matrix backward = row_normalised(block_matrix(a.cast<double>().transpose()));
+      const block_matrix forward = row_normalised(a.template cast<double>());
+      const block_matrix backward = row_normalised(block_matrix(a.template cast<double>().transpose()));
       // W(P_k, P_l) = (C(P_k, P_l) + C(P_l, P_k)^T) / 2, stored once: W(P_l, P_k) is its transpose.
-      const auto b = static_cast<index_t>(blocks_.size());
-      blocks_.push_back({E.source, E.target, 0.5 * (forward + block_matrix(backward.transpose()))});
-      incident_[std::size_t(E.source)].push_back({b, true});
-      incident_[std::size_t(E.target)].push_back({b, false});
+      blocks_[std::size_t(e)] = {source, target, 0.5 * (forward + block_matrix(backward.transpose()))};
+    });
+    for (auto& f : failed)
+      if (f) throw *f;
+    incident_.resize(static_cast<std::size_t>(N));
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+      incident_[std::size_t(blocks_[b].source)].push_back({static_cast<index_t>(b), true});
+      incident_[std::size_t(blocks_[b].target)].push_back({static_cast<index_t>(b), false});
     }
     const index_t n = offset_.back();
     degree_.setConstant(n, self_weight);
@@ -130,14 +158,30 @@ class correspondence_matrix {
 
  private:
   using block_matrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+  using score_block = Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>;
   struct edge_block {
-    index_t source, target;
+    index_t source = no_index, target = no_index;
     block_matrix w;  ///< W(P_source, P_target): rows the source's samples, columns the target's
   };
   struct incident_edge {
     index_t block;   ///< index into blocks_
     bool is_source;  ///< this shape is the block's source (its rows), else its target (its columns)
   };
+
+  /// The (source, target) pairs of `edges`. \throws invalid_input (bad_parameter) for an edge without scores.
+  static std::vector<std::pair<index_t, index_t>> pairs_of(std::span<const correspondence_edge> edges) {
+    std::vector<std::pair<index_t, index_t>> pairs;
+    pairs.reserve(edges.size());
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      if (!edges[e].scores)
+        throw invalid_input(input_error::bad_parameter, static_cast<index_t>(e),
+                            "correspondence_matrix: edge " + std::to_string(e) + " names shapes " +
+                                std::to_string(edges[e].source) + " and " + std::to_string(edges[e].target) +
+                                " (or has no scores)");
+      pairs.push_back({edges[e].source, edges[e].target});
+    }
+    return pairs;
+  }
 
   static block_matrix row_normalised(block_matrix a) {
     for (index_t r = 0; r < a.outerSize(); ++r) {

@@ -228,21 +228,14 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
   auto embed = [&](fuzzy_iteration& it) {
     const auto t0 = clock::now();
     progress("embed", 0, 1);
-    // The chosen blocks only, for as long as the matrix takes to copy them.
-    using score_block = Eigen::SparseMatrix<float, Eigen::RowMajor, std::int32_t>;
+    // Each chosen block is read (from the cache folder, unless in memory) only while the matrix takes it in.
     std::vector<std::pair<key, index_t>> graph(chosen.begin(), chosen.end());
-    std::vector<score_block> blocks(graph.size());
-    detail::parallel_for(static_cast<index_t>(graph.size()), detail::resolve_threads(options.threads, who), [&](index_t e) {
+    std::vector<std::pair<index_t, index_t>> pairs;
+    for (const auto& [k, alt] : graph) pairs.push_back(k);
+    const correspondence_matrix C(sample_counts, pairs, [&](index_t e) {
       const auto& [k, alt] = graph[std::size_t(e)];
-      blocks[std::size_t(e)] = store.visit(k.first, k.second, [&](const pair_alignment& pa) {
-        return pa.alternatives[std::size_t(alt)].scores;
-      });
-    });
-    std::vector<correspondence_edge> ce;
-    for (std::size_t e = 0; e < graph.size(); ++e) ce.push_back({graph[e].first.first, graph[e].first.second, &blocks[e]});
-    const correspondence_matrix C(sample_counts, ce, options.threads);
-    ce.clear();
-    blocks = {};
+      return store.visit(k.first, k.second, [&](const pair_alignment& pa) { return pa.alternatives[std::size_t(alt)].scores; });
+    }, options.threads);
     auto e = embed_diffusion(C, options.embedding, solver);
     it.embedding_info = e.info;
     fuzzy_correspondence_options fo = options.fuzzy;
@@ -401,6 +394,7 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
       out.converged = true;
       break;
     }
+    f = {};  // the new f does not depend on the old one: freeing it first lowers the peak by one embedding
     f = embed(it);
     out.log.push_back(it);
   }
