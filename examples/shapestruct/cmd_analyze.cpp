@@ -1112,6 +1112,14 @@ int run_analyze(const analyze_command_line& c) {
     };
     hooks.problem = [&](const std::string& f, const std::string& m) { if (leader) std::fprintf(stderr, "\ranalyze: templates: skipped %s: %s\n", f.c_str(), m.c_str()); };
     hooks.progress = [&](std::size_t d, std::size_t t) { bar.update("labeling", d, t); };
+    hooks.candidates = [&](std::size_t d, std::size_t t) {
+      ticker.stop();
+      bar.update("candidate templates", d, t);
+      if (d == t) {
+        bar.finish();
+        ticker.start("templates: learning from the best candidates");
+      }
+    };
     hooks.learning_round = [&](int round, int rounds) {  // time left: an upper bound, learning may converge early
       ticker.stop();
       bar.update("learning rounds (at most)", static_cast<std::size_t>(round), static_cast<std::size_t>(rounds));

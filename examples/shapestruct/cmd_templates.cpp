@@ -49,6 +49,13 @@ int run_templates(const templates_command_line& c) {
     std::cerr << "templates: learning round " << round << " of at most " << rounds << " done, " << std::lround(spent)
               << " s spent, at most " << std::lround(spent / round * (rounds - round)) << " s left\n";
   };
+  opt.candidates = [&](std::size_t done, std::size_t total) {
+    if (quiet) return;
+    const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - phase_start).count();
+    std::cerr << "\rtemplates: candidate template " << done << " of " << total << ", " << std::lround(spent)
+              << " s spent, ~" << std::lround(spent / double(done) * double(total - done)) << " s left  "
+              << (done == total ? "\n" : "") << std::flush;
+  };
   opt.progress = [&](std::size_t done, std::size_t total) {
     if (quiet) return;
     if (!first_seen) {
@@ -108,6 +115,7 @@ templates_run_summary run_templates_folder(const std::vector<std::filesystem::pa
       hooks.learning_round(++*done, most);  // shared: the options may be copied per candidate
     };
   }
+  opt.init.progress = hooks.candidates;
   opt.share = o.share;
   const auto sum = run_template_collection(files, out, templates, opt);
   templates_run_summary r;

@@ -40,6 +40,8 @@ struct templates_hooks {
   std::function<void(const std::string&)> phase;
   /// After each learning round: (rounds done, most rounds); learning may converge before the last one.
   std::function<void(int, int)> learning_round;
+  /// Automatic initialisation: after each candidate template is made (done, total), before the learning rounds.
+  std::function<void(std::size_t, std::size_t)> candidates;
 };
 
 /// What a run reports back (collection_run_summary without the templates themselves).

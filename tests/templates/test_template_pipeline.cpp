@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "shapestruct/generate/assembly_generator.hpp"
 #include "shapestruct/io/write_mesh.hpp"
@@ -164,6 +166,26 @@ TEST_CASE("learn_templates moves the template towards the collection, initialize
   validate_template(auto_t);
   CHECK_THROWS_AS(learn_templates({}, shapes, lo), invalid_input);
   CHECK_THROWS_AS(template_from_shape(shapes[0], {.parts = 0}), invalid_input);
+}
+
+TEST_CASE("auto_templates reports each candidate template once, in order, and the result does not depend on it") {
+  const assembly_generator<double> gen(assembly_kind::chair, 11);
+  std::vector<shape_samples> shapes;
+  for (int i = 0; i < 4; ++i) shapes.push_back(make_shape_samples(gen.generate(static_cast<std::uint64_t>(i)).mesh, {.points = 400}));
+  template_learner_options lo;
+  lo.N_iter = 1;
+  lo.threads = 2;
+  template_initializer_options io;
+  io.learn_best = 1;
+  const auto quiet = auto_templates(shapes, lo, io);
+  std::vector<std::pair<std::size_t, std::size_t>> calls;
+  io.progress = [&calls](std::size_t done, std::size_t total) { calls.emplace_back(done, total); };
+  const auto reported = auto_templates(shapes, lo, io);
+  REQUIRE(calls.size() == shapes.size());
+  for (std::size_t c = 0; c < calls.size(); ++c) CHECK(calls[c] == std::pair<std::size_t, std::size_t>(c + 1, shapes.size()));
+  REQUIRE(quiet.size() == reported.size());
+  for (std::size_t t = 0; t < quiet.size(); ++t)
+    CHECK(format_json(template_to_json(quiet[t])) == format_json(template_to_json(reported[t])));
 }
 
 TEST_CASE("learning set admits energies below max(tau x best or e_max) and its non-re-estimating shapes spawn (5.3.3)") {

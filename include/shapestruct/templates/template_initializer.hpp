@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <mutex>
 #include <numeric>
 #include <random>
 #include <string>
@@ -37,6 +39,9 @@ struct template_initializer_options {
   int oversegment = 64;
   /// RMS box-abstraction error (canonical units) up to which cells always merge (segment_into_boxes).
   double merge_tolerance = 0.03;
+  /// auto_templates: progress(done, total) after each candidate template is made (under a lock, from any worker),
+  /// before the learning rounds, which report through template_learner_options::progress. May be empty.
+  std::function<void(std::size_t, std::size_t)> progress{};
 };
 
 namespace detail {
@@ -150,10 +155,16 @@ inline std::vector<part_template> auto_templates(const std::vector<shape_samples
   std::shuffle(order.begin(), order.end(), rng);
   if (opt.candidates > 0) order.resize(std::min<std::size_t>(order.size(), static_cast<std::size_t>(opt.candidates)));
   std::vector<std::pair<double, part_template>> cands(order.size());
+  std::mutex progress_lock;
+  std::size_t made = 0;
   detail::parallel_for(order.size(), detail::resolve_threads(learn.threads, "auto_templates"), [&](std::size_t k) {
     auto [t, e] = template_from_shape(shapes[order[k]], opt, learn.fit);
     t.id = "auto from shape " + std::to_string(order[k]);
     cands[k] = {e, std::move(t)};
+    if (opt.progress) {
+      std::lock_guard lock(progress_lock);
+      opt.progress(++made, order.size());
+    }
   });
   std::stable_sort(cands.begin(), cands.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<part_template> best;
