@@ -43,8 +43,8 @@ class correspondence_matrix {
 
   /// \param sample_counts K_i per shape  \param edges the graph's edges with their chosen alternatives
   /// \param threads std::threads for the products (0 = all cores)
-  /// \throws invalid_input (bad_parameter) for an edge naming a shape out of range or a block of the wrong size,
-  ///         or a negative or non-finite score.
+  /// \throws invalid_input: bad_parameter for an edge naming a shape out of range, without a block, or with a
+  ///         negative or non-finite score; size_mismatch for a block of the wrong size.
   correspondence_matrix(std::span<const index_t> sample_counts, std::span<const correspondence_edge> edges,
                         int threads = 0)
       : correspondence_matrix(sample_counts, pairs_of(edges), [&edges](index_t e) -> const score_block& {
@@ -70,20 +70,21 @@ class correspondence_matrix {
       const auto [source, target] = edges[e];
       if (source < 0 || source >= N || target < 0 || target >= N || source == target)
         throw invalid_input(input_error::bad_parameter, static_cast<index_t>(e),
-                            std::string(who) + ": edge " + std::to_string(e) + " names shapes " + std::to_string(source) +
-                                " and " + std::to_string(target) + " of " + std::to_string(N) + " (or has no scores)");
+                            std::string(who) + ": edge " + std::to_string(e) + " names shapes " +
+                                std::to_string(source) + " and " + std::to_string(target) + " of " + std::to_string(N));
     }
     blocks_.resize(edges.size());
     std::vector<std::optional<invalid_input>> failed(edges.size());
     detail::parallel_for(static_cast<index_t>(edges.size()), threads_, [&](index_t e) {
       const auto [source, target] = edges[std::size_t(e)];
       const auto& a = score_block_of(e);
-      if (a.rows() != sample_counts[std::size_t(source)] || a.cols() != sample_counts[std::size_t(target)]) {
+      const index_t rows = sample_counts[std::size_t(source)], cols = sample_counts[std::size_t(target)];
+      if (a.rows() != rows || a.cols() != cols) {
         failed[std::size_t(e)].emplace(input_error::size_mismatch, e,
                                        std::string(who) + ": edge " + std::to_string(e) + " has a " +
                                            std::to_string(a.rows()) + " x " + std::to_string(a.cols()) +
-                                           " score block for shapes of " + std::to_string(sample_counts[std::size_t(source)]) +
-                                           " and " + std::to_string(sample_counts[std::size_t(target)]) + " samples");
+                                           " score block for shapes of " + std::to_string(rows) + " and " +
+                                           std::to_string(cols) + " samples");
         return;
       }
       for (index_t k = 0; k < a.nonZeros(); ++k) {
@@ -175,9 +176,9 @@ class correspondence_matrix {
     for (std::size_t e = 0; e < edges.size(); ++e) {
       if (!edges[e].scores)
         throw invalid_input(input_error::bad_parameter, static_cast<index_t>(e),
-                            "correspondence_matrix: edge " + std::to_string(e) + " names shapes " +
+                            "correspondence_matrix: edge " + std::to_string(e) + " (shapes " +
                                 std::to_string(edges[e].source) + " and " + std::to_string(edges[e].target) +
-                                " (or has no scores)");
+                                ") has no score block");
       pairs.push_back({edges[e].source, edges[e].target});
     }
     return pairs;

@@ -234,7 +234,8 @@ template <ShapeAligner Aligner, class Solver = lanczos_embedding_solver>
     for (const auto& [k, alt] : graph) pairs.push_back(k);
     const correspondence_matrix C(sample_counts, pairs, [&](index_t e) {
       const auto& [k, alt] = graph[std::size_t(e)];
-      return store.visit(k.first, k.second, [&](const pair_alignment& pa) { return pa.alternatives[std::size_t(alt)].scores; });
+      return store.visit(k.first, k.second,
+                         [&](const pair_alignment& pa) { return pa.alternatives[std::size_t(alt)].scores; });
     }, options.threads);
     auto e = embed_diffusion(C, options.embedding, solver);
     it.embedding_info = e.info;
