@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "huge_pages.hpp"
 #include "option_checks.hpp"
 #include "shapestruct/blended/blended_matcher.hpp"
 #include "shapestruct/io/read_mesh.hpp"
@@ -174,8 +175,9 @@ int run_match(const match_options& m) {
   };
   const auto A = read_noting(pos[0]);
   const auto B = read_noting(pos[1]);
-  if (verbose) std::fprintf(stderr, "read %s (%ld vertices) and %s (%ld vertices)\n", pos[0].c_str(), long(A.V.rows()),
-                            pos[1].c_str(), long(B.V.rows()));
+  if (verbose)
+    std::fprintf(stderr, "read %s (%ld vertices) and %s (%ld vertices)\nmemory: %s\n", pos[0].c_str(),
+                 long(A.V.rows()), pos[1].c_str(), long(B.V.rows()), huge_pages_status().c_str());
   const auto t0 = std::chrono::steady_clock::now();
   // As blended_matcher::match(a, b) does: side by side, each with half the threads; here each failure is
   // explained in the tool's terms first.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "huge_pages.hpp"
 #include "process_group.hpp"
 #include "shapestruct/config.hpp"
 #include "shapestruct/core/errors.hpp"
@@ -88,6 +89,7 @@ int run_tool(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  shapestruct::cli::restart_with_huge_pages(argv);
   shapestruct::cli::process_session session(argc, argv);
   return session.finish(run_tool(argc, argv));
 }
