@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Transparent huge pages for the tool's own memory: glibc's malloc advises the kernel to back large allocations
 // with 2 MB pages when GLIBC_TUNABLES has glibc.malloc.hugetlb=1 (glibc 2.35 and later), which removes most of
-// the page faults and TLB misses of the distance tables, bases and embeddings (docs/blended_maps.md, "Speed").
+// the page faults and TLB misses of the distance tables, bases and embeddings (measured in
+// docs/blended_maps.md, "Transparent huge pages").
 // glibc reads that variable only when a process starts, so the tool starts itself once more with it set.
 #pragma once
 
