@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Landmark error of `shapestruct fuzzy-map` on a generated collection: a second route to the runner's figures.
 
-usage: generated_landmark_check.py SHAPESTRUCT GENERATED_DIR FUZZY_OUT [--pairs N] [--seed S] [--refined]
+usage: generated_landmark_check.py SHAPESTRUCT GENERATED_DIR FUZZY_OUT [--pairs N] [--seed S] [--refined [--no-axis-scales]]
 
 GENERATED_DIR is what `shapestruct generate` wrote (OFF meshes and .pts landmarks), FUZZY_OUT what `shapestruct
 fuzzy` made of it. For N random ordered pairs (A, B) the tool writes the dense vertex map A -> B; each landmark of
@@ -42,6 +42,7 @@ def main():
     ap.add_argument("--pairs", type=int, default=40)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--refined", action="store_true", help="pass --refined to fuzzy-map")
+    ap.add_argument("--no-axis-scales", action="store_true", help="with --refined: pass --no-axis-scales too")
     a = ap.parse_args()
     shapes = json.load(open(os.path.join(a.generated, "collection.json")))["shapes"]
     names = [os.path.splitext(s["mesh"])[0] for s in shapes]
@@ -51,7 +52,8 @@ def main():
         for _ in range(a.pairs):
             i, j = rng.sample(range(len(names)), 2)
             out = os.path.join(tmp, "a_b.map")
-            cmd = [a.tool, "fuzzy-map", a.fuzzy_out, names[i], names[j], "-o", out] + (["--refined"] if a.refined else [])
+            cmd = [a.tool, "fuzzy-map", a.fuzzy_out, names[i], names[j], "-o", out] + (["--refined"] if a.refined else []) + (
+                ["--no-axis-scales"] if a.refined and a.no_axis_scales else [])
             subprocess.run(cmd, check=True, capture_output=True)
             image = [int(line) for line in open(out)]
             va = read_off(os.path.join(a.generated, shapes[i]["mesh"]))[0]

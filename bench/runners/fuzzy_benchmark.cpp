@@ -103,8 +103,17 @@ struct tuning {
   /// the refined fuzzy map, the more consistent of the two (both then equally precise), and that refined blended
   /// choice alone ("blended_only_refined").
   bool refined_duel = false;
+  /// --refine-axis-scales / --baseline-axis-scales: extrinsic_alignment_options::axis_scales for the refined fuzzy
+  /// map / for the all-pairs matcher only (the collection's own alignments keep --sigma's options).
+  bool refine_axis_scales = false;
+  bool baseline_axis_scales = false;
 };
 tuning knobs;
+
+extrinsic_alignment_options with_axis_scales(extrinsic_alignment_options o, bool on) {
+  o.axis_scales = on;
+  return o;
+}
 
 void apply(fuzzy_collection_options& fo) {
   if (knobs.time >= 0) fo.embedding.time = knobs.time;
@@ -125,7 +134,8 @@ std::string fmt(double x, int prec = 3) {
 
 /// The cache folder's mark of a non-default up axis (none for +y, so that older caches stay valid).
 std::string up_suffix(const extrinsic_alignment_options& o) {
-  return o.up_axis == extrinsic_alignment_options{}.up_axis ? std::string() : "_up" + std::to_string(o.up_axis);
+  return (o.up_axis == extrinsic_alignment_options{}.up_axis ? std::string() : "_up" + std::to_string(o.up_axis)) +
+         (o.axis_scales ? "_axis_scales" : "");
 }
 
 double mean_of(const std::vector<double>& v) {
@@ -770,8 +780,8 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
       const auto& Vb = shapes[std::size_t(b)].mesh.V;
       const double diag = (Vb.colwise().maxCoeff() - Vb.colwise().minCoeff()).norm();
       const auto fuzzy_match = r.fuzzy.best_matches(a, b);
-      const auto refined = best_scoring_samples(refined_fuzzy_alignment(r.fuzzy, records, a, b, knobs.extrinsic));
-      const std::vector<index_t> baseline = knobs.baseline ? best_scoring_samples(align_extrinsic(ra, rb, knobs.extrinsic)) : std::vector<index_t>{};
+      const auto refined = best_scoring_samples(refined_fuzzy_alignment(r.fuzzy, records, a, b, with_axis_scales(knobs.extrinsic, knobs.refine_axis_scales)));
+      const std::vector<index_t> baseline = knobs.baseline ? best_scoring_samples(align_extrinsic(ra, rb, with_axis_scales(knobs.extrinsic, knobs.baseline_axis_scales))) : std::vector<index_t>{};
       // Least-squares affine map of b's true landmarks onto a's (both directions share the landmark names).
       std::vector<std::string> common;
       for (const auto& [name, x] : la)
@@ -954,10 +964,10 @@ int run_labels(const std::string& set, const fs::path& data, const fs::path& out
         const auto& T = shapes[std::size_t(t)];
         const auto& S = shapes[std::size_t(s)];
         sf[std::size_t(t)].push_back(label_score(T, transfer(S, T, r.fuzzy.best_matches(t, s)), rand));
-        const auto refined = best_scoring_samples(refined_fuzzy_alignment(r.fuzzy, records, t, s, eo));
+        const auto refined = best_scoring_samples(refined_fuzzy_alignment(r.fuzzy, records, t, s, with_axis_scales(eo, knobs.refine_axis_scales)));
         sr[std::size_t(t)].push_back(label_score(T, transfer(S, T, refined), rand));
         // The matcher alone: target t aligned to source s, each target sample to its best-scoring source sample.
-        const auto best = best_scoring_samples(align_extrinsic(records[std::size_t(t)], records[std::size_t(s)], eo));
+        const auto best = best_scoring_samples(align_extrinsic(records[std::size_t(t)], records[std::size_t(s)], with_axis_scales(eo, knobs.baseline_axis_scales)));
         sp[std::size_t(t)].push_back(label_score(T, transfer(S, T, best), rand));
       }
     });
@@ -1023,6 +1033,9 @@ static int run(int argc, char** argv) {
     else if (a == "--aligner") knobs.aligner = next();
     else if (a == "--sigma") knobs.extrinsic.sigma_fraction = std::stod(next());
     else if (a == "--up") knobs.extrinsic.up_axis = std::stoi(next());
+    else if (a == "--axis-scales") knobs.extrinsic.axis_scales = knobs.refine_axis_scales = knobs.baseline_axis_scales = true;
+    else if (a == "--refine-axis-scales") knobs.refine_axis_scales = true;
+    else if (a == "--baseline-axis-scales") knobs.baseline_axis_scales = true;
     else if (a == "--intrinsic-sigma") knobs.intrinsic_sigma = std::stod(next());
     else if (a == "--min-gain") knobs.consistent.min_consistency_gain = std::stod(next());
     else if (a == "--fuzzy-min-gain") knobs.consistent.fuzzy_min_gain = std::stod(next());

@@ -64,6 +64,7 @@ struct fuzzy_map_command_line {
   double fuzzy_min_gain = consistent_blended_options{}.fuzzy_min_gain;
   bool blended_only = false;
   bool refined = false;
+  bool no_axis_scales = false;
   long long threads = 0;
 };
 
@@ -113,6 +114,8 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
       if (const auto* pairs = json_member(cache, "pairs"); pairs != nullptr)
         if (const auto* up = json_member(*pairs, "up"); up != nullptr && up->is_number_integer()) eo.up_axis = up->get<int>();
     }
+    // A scale per axis fits shapes of other proportions closely; it needs the upright frame (docs/fuzzy.md).
+    eo.axis_scales = !c.no_axis_scales && eo.up_axis != no_up_axis;
     map = refined_fuzzy_vertex_map(f, records, a, b, read_mesh(files[std::size_t(a)]).mesh.V,
                                    read_mesh(files[std::size_t(b)]).mesh.V, eo);
   } else {
@@ -446,9 +449,12 @@ cli::command_fn setup_fuzzy_map(CLI::App& app) {
       ->check(cli::at_least(0.0))
       ->needs(consistent)
       ->excludes(blended_only);
-  app.add_flag("--refined", c->refined,
-               "(extrinsic collections) the best fuzzy correspondence made precise: the\nsimilarity fitted to it (upright, unless made with --up none), refined by\none ICP; each vertex goes to the nearest vertex of B")
+  auto* refined = app.add_flag("--refined", c->refined,
+               "(extrinsic collections) the best fuzzy correspondence made precise: the\nsimilarity fitted to it (upright, unless made with --up none), refined by\none ICP, then by one more that also fits a scale per axis (upright\ncollections); each vertex goes to the nearest vertex of B")
       ->excludes(consistent);
+  app.add_flag("--no-axis-scales", c->no_axis_scales,
+               "with --refined: stop after the similarity ICP (one scale for all axes)")
+      ->needs(refined);
   app.add_option("--threads", c->threads, "worker threads, 0 = all cores (default)")->type_name("N")->check(cli::at_least(0LL));
   app.footer(
       "Dense vertex map from shape A to shape B of a collection computed by `shapestruct fuzzy`: by default the\n"

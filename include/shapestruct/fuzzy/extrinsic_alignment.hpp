@@ -12,6 +12,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -52,6 +53,10 @@ struct extrinsic_alignment_options {
   double icp_tolerance = 1e-6;
   /// Fit a uniform scale (4.3.3: "a 2D rotation and a scale"); false keeps the scale at 1.
   bool allow_scale = true;
+  /// After the similarity ICP, refine once more with a scale per axis of the source's frame (x -> S R x + t, S
+  /// diagonal, each scale within a factor 2 of the uniform one): shapes that differ in proportions (a wider seat,
+  /// longer legs) then fit closely. Upright alignments only; needs allow_scale. Off in the chapter's matcher.
+  bool axis_scales = false;
   /// Entries of a row of a(p_i, .) below keep_fraction * the row's largest are dropped; in [0, 1].
   float keep_fraction = 1e-3f;
   /// At most this many entries per row are kept (the largest), >= 1.
@@ -93,6 +98,25 @@ struct free_similarity {
 inline affine_pair to_affine_pair(const free_similarity& T, int /*up*/) {
   return {T.scale * T.rotation, T.rotation.transpose() / T.scale, T.translation};
 }
+
+/// x -> S R(angle about the up axis) x + translation with S = diag(scales) in the source's axes: an upright
+/// similarity that also stretches each axis (options.axis_scales).
+struct upright_stretch {
+  Eigen::Vector3d scales = Eigen::Vector3d::Ones();
+  double base_scale = 1;  ///< the uniform scale it started from: each of `scales` stays within a factor 2 of it
+  double angle = 0;
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+};
+
+inline affine_pair to_affine_pair(const upright_stretch& T, int up) {
+  const Eigen::Matrix3d R = upright_rotation(up, T.angle);
+  return {T.scales.asDiagonal() * R, R.transpose() * T.scales.cwiseInverse().asDiagonal(), T.translation};
+}
+
+/// The size factor of a transform: what turns a distance in the target's frame into one in the source's.
+inline double size_factor(const upright_similarity& T) { return T.scale; }
+inline double size_factor(const free_similarity& T) { return T.scale; }
+inline double size_factor(const upright_stretch& T) { return std::cbrt(T.scales.prod()); }
 
 /// Centroid, angle of the first horizontal principal axis and RMS radius of a point set: what the principal-axis
 /// starts need.
@@ -198,6 +222,41 @@ inline free_similarity fit_free_similarity(const std::vector<Eigen::Vector3d>& p
   return T;
 }
 
+/// The upright stretch best taking the p_i onto the x_i, one alternation of closed forms from `previous`: the angle
+/// by 2-D Procrustes between the p_i' and the x_i' with previous's stretch undone, then each axis's scale by least
+/// squares on that axis, then the translation matching the centroids (primes: centred). Least squares, not the
+/// symmetric scale of the similarities: that one is a ratio of the two point sets' spreads, which differ along a
+/// stretched axis when the ICP's query points are not corresponding points. Each scale stays within a factor 2 of
+/// `base_scale` (a thin axis holds too little spread to fit its own).
+inline upright_stretch fit_upright_stretch(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& x,
+                                           int up, const upright_stretch& previous) {
+  const int a = (up + 1) % 3, b = (up + 2) % 3;
+  const auto [p_mean, x_mean] = means_of(p, x);
+  const Eigen::Vector3d unstretch = previous.scales.cwiseInverse();
+  double re = 0, im = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Eigen::Vector3d dp = p[i] - p_mean, y = unstretch.cwiseProduct(x[i] - x_mean);
+    re += y[a] * dp[a] + y[b] * dp[b];
+    im += y[b] * dp[a] - y[a] * dp[b];
+  }
+  upright_stretch T = previous;
+  if (re != 0 || im != 0) T.angle = std::atan2(im, re);
+  const Eigen::Matrix3d R = upright_rotation(up, T.angle);
+  Eigen::Vector3d qq = Eigen::Vector3d::Zero(), xq = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Eigen::Vector3d q = R * (p[i] - p_mean), dx = x[i] - x_mean;
+    qq += q.cwiseAbs2();
+    xq += dx.cwiseProduct(q);
+  }
+  for (int k = 0; k < 3; ++k) {
+    const double scale = xq[k] / qq[k];
+    if (scale > 0 && std::isfinite(scale))
+      T.scales[k] = std::clamp(scale, 0.5 * previous.base_scale, 2 * previous.base_scale);
+  }
+  T.translation = x_mean - T.scales.asDiagonal() * (R * p_mean);
+  return T;
+}
+
 /// Keeps the pairs whose squared distance is within the `keep` quantile of d2 (ties at the cut all stay).
 inline void trim_pairs(std::vector<Eigen::Vector3d>& p, std::vector<Eigen::Vector3d>& x, std::vector<double>& d2,
                        std::size_t begin, double keep, std::vector<double>& scratch) {
@@ -243,10 +302,18 @@ inline free_similarity fit_like(const free_similarity& previous, const std::vect
                                 const std::vector<Eigen::Vector3d>& x, const extrinsic_alignment_options& o) {
   return fit_free_similarity(p, x, o.allow_scale, previous);
 }
+inline upright_stretch fit_like(const upright_stretch& previous, const std::vector<Eigen::Vector3d>& p,
+                                const std::vector<Eigen::Vector3d>& x, const extrinsic_alignment_options& o) {
+  return fit_upright_stretch(p, x, o.up_axis, previous);
+}
 /// Relative scale change + rotation change in radians + translation change over `length`.
 inline double transform_change(const upright_similarity& next, const upright_similarity& T, double length) {
   return std::abs(next.scale - T.scale) / T.scale + wrapped_angle_difference(next.angle, T.angle) +
          (next.translation - T.translation).norm() / length;
+}
+inline double transform_change(const upright_stretch& next, const upright_stretch& T, double length) {
+  return (next.scales - T.scales).cwiseQuotient(T.scales).cwiseAbs().sum() +
+         wrapped_angle_difference(next.angle, T.angle) + (next.translation - T.translation).norm() / length;
 }
 inline double transform_change(const free_similarity& next, const free_similarity& T, double length) {
   const double cosine = std::clamp(((next.rotation * T.rotation.transpose()).trace() - 1) / 2, -1.0, 1.0);
@@ -288,7 +355,7 @@ Similarity refine_similarity_icp(const Eigen::Matrix<double, Eigen::Dynamic, 3>&
     }
     trim_pairs(p, x, d2, 0, keep, scratch);
     const std::size_t reverse_begin = d2.size();
-    const double s2 = T.scale * T.scale;  // distances measured in the target frame, reported in the source's
+    const double s2 = size_factor(T) * size_factor(T);  // distances measured in the target frame, reported in the source's
     for (index_t i = 0; i < Qk.rows(); ++i) {
       const Eigen::Vector3d v = Qk.row(i).transpose();
       const auto nn = tree_l.nearest(Eigen::Vector3d(M.A_inverse * (v - M.t)));
@@ -389,10 +456,22 @@ struct extrinsic_pair_geometry {
         query_k(spread_subset(s.surface_points, icp_queries)), query_l(spread_subset(t.surface_points, icp_queries)) {}
 
   /// ICP from `start` (an upright_similarity or a free_similarity), then the scores of the refined transform.
+  /// With o.axis_scales an upright similarity is refined once more as an upright_stretch.
   template <class Similarity>
   [[nodiscard]] alignment_alternative refine_and_score(const Similarity& start,
                                                        const extrinsic_alignment_options& o) const {
     const Similarity T = refine_similarity_icp(query_k, tree_k, query_l, tree_l, start, source->diameter, o);
+    if constexpr (std::is_same_v<Similarity, upright_similarity>) {
+      if (o.axis_scales) {
+        upright_stretch S;
+        S.scales.setConstant(T.scale);
+        S.base_scale = T.scale;
+        S.angle = T.angle;
+        S.translation = T.translation;
+        S = refine_similarity_icp(query_k, tree_k, query_l, tree_l, S, source->diameter, o);
+        return score_affine_pair(*source, *target, tree_k, tree_l, to_affine_pair(S, o.up_axis), o);
+      }
+    }
     return score_affine_pair(*source, *target, tree_k, tree_l, to_affine_pair(T, o.up_axis), o);
   }
 };
@@ -412,6 +491,8 @@ inline void check_extrinsic_options(const extrinsic_alignment_options& o, const 
     fail("options.keep_fraction must be in [0, 1], got " + std::to_string(o.keep_fraction));
   if (o.max_entries_per_row < 1)
     fail("options.max_entries_per_row must be >= 1, got " + std::to_string(o.max_entries_per_row));
+  if (o.axis_scales && (o.up_axis == no_up_axis || !o.allow_scale))
+    fail("options.axis_scales needs an up axis and allow_scale (it stretches an upright similarity)");
 }
 
 inline void check_extrinsic_record(const shape_record& r, const char* role, const char* who) {
@@ -517,7 +598,8 @@ inline std::vector<free_similarity> free_starts(const principal_frame& fk, const
 /// about the centroids (1 with allow_scale = false) and the translation maps centroid onto centroid. Each start is
 /// refined by symmetric trimmed ICP (closed-form upright Procrustes per iteration, up to icp_iterations): 128
 /// evenly spread surface_points of each shape (farthest points) are paired with the nearest of all the other's
-/// surface_points.
+/// surface_points. With options.axis_scales each refined start is refined once more with a scale per axis of the
+/// source's frame (detail::upright_stretch), the same ICP.
 ///
 /// With options.up_axis = no_up_axis the rotation is free: 24 starts take the target's 3-D principal axes (PCA of
 /// its surface_points) onto the source's in every order and with every sign change that keeps a rotation, and ICP
@@ -525,7 +607,7 @@ inline std::vector<free_similarity> free_starts(const principal_frame& fk, const
 ///
 /// All refined alternatives (4, or 24 without an up axis) are returned, in the start order above, with `initial`
 /// the one of largest B_a: the graph optimisation (4.3.7) may pick another. Each alternative's parameters are the
-/// 3 x 4 [s R | t] read back by extrinsic_transform; B_a uses sigma(S) = options.sigma_fraction * diameter.
+/// 3 x 4 [s R | t] (S R with axis_scales) read back by extrinsic_transform; B_a uses sigma(S) = options.sigma_fraction * diameter.
 /// Distances to a surface are distances to the nearest of its surface_points. Rows of the scores keep the entries of at least
 /// keep_fraction * the row's largest, at most max_entries_per_row of them (the largest), never fewer than one.
 /// `seconds` is the wall time of the call.

@@ -49,7 +49,8 @@ Similarity fit_to_matches(const std::vector<Eigen::Vector3d>& target_points,
 /// as align_extrinsic scores its alternatives. f is right globally wherever the collection is, but only to the
 /// spacing of the K samples and blurred by the diffusion; the ICP keeps its global placement and sharpens it
 /// locally. One ICP from where the collection says the shapes correspond, instead of the
-/// matcher's four from principal axes chosen by B_a.
+/// matcher's four from principal axes chosen by B_a. With options.axis_scales (upright collections) a second ICP
+/// also fits a scale per axis: shapes of other proportions then fit more closely (docs/fuzzy.md measures it).
 /// \param f the collection's fuzzy correspondence  \param records the collection's records (f's shapes)
 /// \param a, b source and target: the transform takes b into a's frame, as an alternative of the pair (a, b)
 /// \returns the alternative: its scores rank b's samples for each sample of a, its parameters the transform
