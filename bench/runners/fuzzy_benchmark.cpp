@@ -19,7 +19,7 @@
 //       stored original.
 //   run_fuzzy_benchmark --set chairs|airplanes --count N --out DIR [--threads T] [--seed S]
 //       A generated collection of polygon soups with named landmarks, extrinsic: landmark error / bounding-box
-//       diagonal of the target, over all ordered pairs, for the best fuzzy correspondence, the extrinsic
+//       diagonal of the target, over all ordered pairs, for the best fuzzy correspondence, it refined, the extrinsic
 //       matcher alone on every pair, and the least-squares affine alignment of the true landmarks.
 //   run_fuzzy_benchmark --set coseg|psb --data $SHAPESTRUCT_DATA --out DIR [--classes chair,table,...] [--threads T]
 //       Label transfer on real collections, extrinsic: the 17 consistently labelled COSEG chairs (all but
@@ -34,7 +34,9 @@
 // extrinsic and intrinsic aligners); --up the extrinsic aligner's up axis (-1: none, any rotation); --min-gain, --fuzzy-min-gain, --max-fuzzy-distortion and --fuzzy-min-distance
 // the consistent blended map's min_consistency_gain, fuzzy_min_gain, max_fuzzy_distortion_ratio and
 // fuzzy_min_distance; --no-fuzzy-candidate leaves the refined best fuzzy map out of its
-// candidates (by default the runner also scores that choice as consistent_blended_only); --time, --dims,
+// candidates (by default the runner also scores that choice as consistent_blended_only); --no-refine-axis-scales
+// refines the extrinsic fuzzy map with one scale (by default a scale per axis, as `fuzzy-map --refined`);
+// --baseline-axis-scales also scores the matcher with a scale per axis on every pair; --time, --dims,
 // --iterations, --samples, --edges-per-shape (M) the pipeline's.
 // Writes <set>_pairs.csv (per pair and method; for shrec also shrec_groups.csv, every candidate blended map of a
 // pair with its selection features and errors), <set>_choices.csv (per pair, what the consistent map chose and the
@@ -103,15 +105,17 @@ struct tuning {
   /// the refined fuzzy map, the more consistent of the two (both then equally precise), and that refined blended
   /// choice alone ("blended_only_refined").
   bool refined_duel = false;
-  /// --refine-axis-scales / --baseline-axis-scales: extrinsic_alignment_options::axis_scales for the refined fuzzy
-  /// map / for the all-pairs matcher only (the collection's own alignments keep --sigma's options).
-  bool refine_axis_scales = false;
+  /// The refined fuzzy map fits a scale per axis, as `fuzzy-map --refined` does (extrinsic_alignment_options::
+  /// axis_scales, upright collections); --no-refine-axis-scales: one scale, the similarity alone.
+  bool refine_axis_scales = true;
+  /// --baseline-axis-scales: also score the all-pairs matcher with axis_scales (a column beside the chapter's).
   bool baseline_axis_scales = false;
 };
 tuning knobs;
 
+/// The options with axis_scales on where asked and possible (it needs an up axis).
 extrinsic_alignment_options with_axis_scales(extrinsic_alignment_options o, bool on) {
-  o.axis_scales = on;
+  o.axis_scales = on && o.up_axis != no_up_axis && o.allow_scale;
   return o;
 }
 
@@ -767,9 +771,9 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
     (rec.samples.rowwise() - x.transpose()).rowwise().squaredNorm().minCoeff(&best);
     return best;
   };
-  std::vector<double> e_fuzzy, e_refined, e_pairwise, e_affine;
+  std::vector<double> e_fuzzy, e_refined, e_pairwise, e_affine, e_pairwise_axes;
   const auto t2 = clock_type::now();
-  std::vector<std::vector<double>> ef(static_cast<std::size_t>(count)), er(ef), ep(ef), ea(ef);
+  std::vector<std::vector<double>> ef(static_cast<std::size_t>(count)), er(ef), ep(ef), ea(ef), epa(ef);
   detail::parallel_for(count, detail::resolve_threads(threads), [&](int a) {
     const auto la = landmarks(a);
     for (int b = 0; b < count; ++b) {
@@ -781,7 +785,9 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
       const double diag = (Vb.colwise().maxCoeff() - Vb.colwise().minCoeff()).norm();
       const auto fuzzy_match = r.fuzzy.best_matches(a, b);
       const auto refined = best_scoring_samples(refined_fuzzy_alignment(r.fuzzy, records, a, b, with_axis_scales(knobs.extrinsic, knobs.refine_axis_scales)));
-      const std::vector<index_t> baseline = knobs.baseline ? best_scoring_samples(align_extrinsic(ra, rb, with_axis_scales(knobs.extrinsic, knobs.baseline_axis_scales))) : std::vector<index_t>{};
+      const std::vector<index_t> baseline = knobs.baseline ? best_scoring_samples(align_extrinsic(ra, rb, knobs.extrinsic)) : std::vector<index_t>{};
+      const std::vector<index_t> baseline_axes = knobs.baseline && knobs.baseline_axis_scales
+          ? best_scoring_samples(align_extrinsic(ra, rb, with_axis_scales(knobs.extrinsic, true))) : std::vector<index_t>{};
       // Least-squares affine map of b's true landmarks onto a's (both directions share the landmark names).
       std::vector<std::string> common;
       for (const auto& [name, x] : la)
@@ -795,6 +801,8 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
         er[std::size_t(a)].push_back((rb.samples.row(refined[std::size_t(s)]).transpose() - truth).norm() / diag);
         if (knobs.baseline)
           ep[std::size_t(a)].push_back((rb.samples.row(baseline[std::size_t(s)]).transpose() - truth).norm() / diag);
+        if (!baseline_axes.empty())
+          epa[std::size_t(a)].push_back((rb.samples.row(baseline_axes[std::size_t(s)]).transpose() - truth).norm() / diag);
         index_t aff = 0;
         (Bt.rowwise() - ra.samples.row(s)).rowwise().squaredNorm().minCoeff(&aff);
         ea[std::size_t(a)].push_back((rb.samples.row(aff).transpose() - truth).norm() / diag);
@@ -806,11 +814,14 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
     e_refined.insert(e_refined.end(), er[std::size_t(a)].begin(), er[std::size_t(a)].end());
     e_pairwise.insert(e_pairwise.end(), ep[std::size_t(a)].begin(), ep[std::size_t(a)].end());
     e_affine.insert(e_affine.end(), ea[std::size_t(a)].begin(), ea[std::size_t(a)].end());
+    e_pairwise_axes.insert(e_pairwise_axes.end(), epa[std::size_t(a)].begin(), epa[std::size_t(a)].end());
   }
   const double t_eval = seconds_since(t2);
-  write_curves(out_dir / (set + std::to_string(count) + "_curves.dat"),
-               {{"best_fuzzy", &e_fuzzy}, {"refined_fuzzy", &e_refined}, {"extrinsic_all_pairs", &e_pairwise},
-                {"true_landmark_affine", &e_affine}},
+  std::vector<std::pair<std::string, const std::vector<double>*>> curves = {
+      {"best_fuzzy", &e_fuzzy}, {"refined_fuzzy", &e_refined}, {"extrinsic_all_pairs", &e_pairwise}};
+  if (!e_pairwise_axes.empty()) curves.emplace_back("extrinsic_axis_scales_all_pairs", &e_pairwise_axes);
+  curves.emplace_back("true_landmark_affine", &e_affine);
+  write_curves(out_dir / (set + std::to_string(count) + "_curves.dat"), curves,
                set + " x " + std::to_string(count) + ": fraction of landmark pairs within D (Euclidean / bbox diagonal)");
   std::ofstream summary(out_dir / "summary.md", std::ios::app);
   summary << "\n## " << count << " generated " << set << " (run_fuzzy_benchmark --set " << set << " --count " << count
@@ -818,8 +829,11 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
           << fmt(t_records, 1) << " s, fuzzy " << fmt(t_fuzzy, 1) << " s\n\n"
           << "| method | within 0.05 | within 0.10 | within 0.25 | mean |\n|---|---|---|---|---|\n";
   for (const auto& [m, e] : std::vector<std::pair<std::string, const std::vector<double>*>>{
-           {"best fuzzy", &e_fuzzy}, {"refined fuzzy (one ICP from it)", &e_refined},
-           {"extrinsic matcher, all pairs", &e_pairwise}, {"true-landmark affine, all pairs", &e_affine}})
+           {"best fuzzy", &e_fuzzy}, {"refined fuzzy (ICP from it)", &e_refined},
+           {"extrinsic matcher, all pairs", &e_pairwise},
+           {"extrinsic matcher with axis scales, all pairs", &e_pairwise_axes},
+           {"true-landmark affine, all pairs", &e_affine}})
+    if (!e->empty())
     summary << "| " << m << " | " << fmt(within(*e, 0.05)) << " | " << fmt(within(*e, 0.10)) << " | "
             << fmt(within(*e, 0.25)) << " | " << fmt(mean_of(*e), 4) << " |\n";
   std::cout << "landmark pairs " << e_fuzzy.size() << " (evaluation " << fmt(t_eval, 1) << " s)\n"
@@ -828,7 +842,12 @@ int run_generated(const std::string& set, int count, const fs::path& out_dir, in
             << "\n  refined fuzzy " << fmt(within(e_refined, 0.05)) << " / " << fmt(within(e_refined, 0.10)) << " / "
             << fmt(within(e_refined, 0.25)) << ", " << fmt(mean_of(e_refined), 4)
             << "\n  extrinsic all pairs " << fmt(within(e_pairwise, 0.05)) << " / " << fmt(within(e_pairwise, 0.10)) << " / "
-            << fmt(within(e_pairwise, 0.25)) << ", " << fmt(mean_of(e_pairwise), 4) << "\n  true-landmark affine "
+            << fmt(within(e_pairwise, 0.25)) << ", " << fmt(mean_of(e_pairwise), 4)
+            << (e_pairwise_axes.empty() ? std::string()
+                                        : "\n  extrinsic all pairs, axis scales " + fmt(within(e_pairwise_axes, 0.05)) + " / " +
+                                              fmt(within(e_pairwise_axes, 0.10)) + " / " + fmt(within(e_pairwise_axes, 0.25)) +
+                                              ", " + fmt(mean_of(e_pairwise_axes), 4))
+            << "\n  true-landmark affine "
             << fmt(within(e_affine, 0.05)) << " / " << fmt(within(e_affine, 0.10)) << " / " << fmt(within(e_affine, 0.25))
             << ", " << fmt(mean_of(e_affine), 4) << "\n";
   return 0;
@@ -957,7 +976,7 @@ int run_labels(const std::string& set, const fs::path& data, const fs::path& out
     const auto t1 = clock_type::now();
     const auto r = compute_fuzzy_correspondences(records, extrinsic_aligner(records, eo), fo);
     const double t_fuzzy = seconds_since(t1);
-    std::vector<std::vector<double>> sf(records.size()), sr(records.size()), sp(records.size());
+    std::vector<std::vector<double>> sf(records.size()), sr(records.size()), sp(records.size()), spa(records.size());
     detail::parallel_for(n, detail::resolve_threads(threads), [&](index_t t) {
       for (index_t s = 0; s < n; ++s) {
         if (s == t) continue;
@@ -967,11 +986,17 @@ int run_labels(const std::string& set, const fs::path& data, const fs::path& out
         const auto refined = best_scoring_samples(refined_fuzzy_alignment(r.fuzzy, records, t, s, with_axis_scales(eo, knobs.refine_axis_scales)));
         sr[std::size_t(t)].push_back(label_score(T, transfer(S, T, refined), rand));
         // The matcher alone: target t aligned to source s, each target sample to its best-scoring source sample.
-        const auto best = best_scoring_samples(align_extrinsic(records[std::size_t(t)], records[std::size_t(s)], with_axis_scales(eo, knobs.baseline_axis_scales)));
+        const auto best = best_scoring_samples(align_extrinsic(records[std::size_t(t)], records[std::size_t(s)], eo));
         sp[std::size_t(t)].push_back(label_score(T, transfer(S, T, best), rand));
+        if (knobs.baseline_axis_scales) {
+          const auto stretched = best_scoring_samples(
+              align_extrinsic(records[std::size_t(t)], records[std::size_t(s)], with_axis_scales(eo, true)));
+          spa[std::size_t(t)].push_back(label_score(T, transfer(S, T, stretched), rand));
+        }
       }
     });
-    std::vector<double> f_all, r_all, p_all;
+    std::vector<double> f_all, r_all, p_all, pa_all;
+    for (const auto& row : spa) pa_all.insert(pa_all.end(), row.begin(), row.end());
     int better = 0;
     for (index_t t = 0; t < n; ++t) {
       index_t j = 0;
@@ -993,7 +1018,8 @@ int run_labels(const std::string& set, const fs::path& data, const fs::path& out
     std::cout << spec.name << ": " << n << " shapes (records " << fmt(seconds_since(t0) - t_fuzzy, 1) << " s), fuzzy "
               << fmt(t_fuzzy, 1) << " s, pairs aligned " << r.pairs_aligned << " of " << all_pairs << ", rounds "
               << r.log.size() << "\n  " << (rand ? "Rand index" : "labelled area") << ": best fuzzy " << fmt(mean_of(f_all))
-              << ", refined fuzzy " << fmt(mean_of(r_all)) << ", extrinsic matcher all pairs " << fmt(mean_of(p_all)) << " (fuzzy better on " << better << " of "
+              << ", refined fuzzy " << fmt(mean_of(r_all)) << ", extrinsic matcher all pairs " << fmt(mean_of(p_all))
+              << (pa_all.empty() ? std::string() : ", with axis scales " + fmt(mean_of(pa_all))) << " (fuzzy better on " << better << " of "
               << f_all.size() << " ordered pairs)\n";
   }
   return 0;
@@ -1033,8 +1059,7 @@ static int run(int argc, char** argv) {
     else if (a == "--aligner") knobs.aligner = next();
     else if (a == "--sigma") knobs.extrinsic.sigma_fraction = std::stod(next());
     else if (a == "--up") knobs.extrinsic.up_axis = std::stoi(next());
-    else if (a == "--axis-scales") knobs.extrinsic.axis_scales = knobs.refine_axis_scales = knobs.baseline_axis_scales = true;
-    else if (a == "--refine-axis-scales") knobs.refine_axis_scales = true;
+    else if (a == "--no-refine-axis-scales") knobs.refine_axis_scales = false;
     else if (a == "--baseline-axis-scales") knobs.baseline_axis_scales = true;
     else if (a == "--intrinsic-sigma") knobs.intrinsic_sigma = std::stod(next());
     else if (a == "--min-gain") knobs.consistent.min_consistency_gain = std::stod(next());
@@ -1049,7 +1074,8 @@ static int run(int argc, char** argv) {
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--edges-per-shape M] [--no-baseline] [--weak-support F]\n"
                    "  [--orientation-margin F]\n"
                    "  [--aligner extrinsic|truth] [--sigma F] [--up 0|1|2|-1] [--intrinsic-sigma F] [--min-gain F] [--fuzzy-min-gain F]\n"
-                   "  [--max-fuzzy-distortion R] [--fuzzy-min-distance D] [--no-fuzzy-candidate] [--refined-duel]\n";
+                   "  [--max-fuzzy-distortion R] [--fuzzy-min-distance D] [--no-fuzzy-candidate] [--refined-duel]\n"
+                   "  [--no-refine-axis-scales] [--baseline-axis-scales]\n";
       return 2;
     }
   }
