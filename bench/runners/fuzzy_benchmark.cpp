@@ -36,7 +36,8 @@
 // fuzzy_min_distance; --no-fuzzy-candidate leaves the refined best fuzzy map out of its
 // candidates (by default the runner also scores that choice as consistent_blended_only); --no-refine-axis-scales
 // refines the extrinsic fuzzy map with one scale (by default a scale per axis, as `fuzzy-map --refined`);
-// --baseline-axis-scales also scores the matcher with a scale per axis on every pair; --time, --dims,
+// --baseline-axis-scales also scores the matcher with a scale per axis on every pair; --axis-scales makes the
+// collection's own alignments and the all-pairs matcher fit one (extrinsic_alignment_options::axis_scales); --time, --dims,
 // --iterations, --samples, --edges-per-shape (M) the pipeline's.
 // Writes <set>_pairs.csv (per pair and method; for shrec also shrec_groups.csv, every candidate blended map of a
 // pair with its selection features and errors), <set>_choices.csv (per pair, what the consistent map chose and the
@@ -1060,6 +1061,7 @@ static int run(int argc, char** argv) {
     else if (a == "--sigma") knobs.extrinsic.sigma_fraction = std::stod(next());
     else if (a == "--up") knobs.extrinsic.up_axis = std::stoi(next());
     else if (a == "--no-refine-axis-scales") knobs.refine_axis_scales = false;
+    else if (a == "--axis-scales") knobs.extrinsic.axis_scales = true;
     else if (a == "--baseline-axis-scales") knobs.baseline_axis_scales = true;
     else if (a == "--intrinsic-sigma") knobs.intrinsic_sigma = std::stod(next());
     else if (a == "--min-gain") knobs.consistent.min_consistency_gain = std::stod(next());
@@ -1075,7 +1077,7 @@ static int run(int argc, char** argv) {
                    "  [--orientation-margin F]\n"
                    "  [--aligner extrinsic|truth] [--sigma F] [--up 0|1|2|-1] [--intrinsic-sigma F] [--min-gain F] [--fuzzy-min-gain F]\n"
                    "  [--max-fuzzy-distortion R] [--fuzzy-min-distance D] [--no-fuzzy-candidate] [--refined-duel]\n"
-                   "  [--no-refine-axis-scales] [--baseline-axis-scales]\n";
+                   "  [--no-refine-axis-scales] [--baseline-axis-scales] [--axis-scales]\n";
       return 2;
     }
   }
