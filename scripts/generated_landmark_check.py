@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Landmark error of `shapestruct fuzzy-map` on a generated collection: a second route to the runner's figures.
 
-usage: generated_landmark_check.py SHAPESTRUCT GENERATED_DIR FUZZY_OUT [--pairs N] [--seed S] [--refined [--no-axis-scales]]
+usage: generated_landmark_check.py SHAPESTRUCT GENERATED_DIR FUZZY_OUT [--pairs N] [--seed S]
+       [--refined [--no-axis-scales]]
 
 GENERATED_DIR is what `shapestruct generate` wrote (OFF meshes and .pts landmarks), FUZZY_OUT what `shapestruct
 fuzzy` made of it. For N random ordered pairs (A, B) the tool writes the dense vertex map A -> B; each landmark of
@@ -52,8 +53,9 @@ def main():
         for _ in range(a.pairs):
             i, j = rng.sample(range(len(names)), 2)
             out = os.path.join(tmp, "a_b.map")
-            cmd = [a.tool, "fuzzy-map", a.fuzzy_out, names[i], names[j], "-o", out] + (["--refined"] if a.refined else []) + (
-                ["--no-axis-scales"] if a.refined and a.no_axis_scales else [])
+            cmd = [a.tool, "fuzzy-map", a.fuzzy_out, names[i], names[j], "-o", out]
+            if a.refined:
+                cmd += ["--refined"] + (["--no-axis-scales"] if a.no_axis_scales else [])
             subprocess.run(cmd, check=True, capture_output=True)
             image = [int(line) for line in open(out)]
             va = read_off(os.path.join(a.generated, shapes[i]["mesh"]))[0]

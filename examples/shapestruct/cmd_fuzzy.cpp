@@ -450,7 +450,10 @@ cli::command_fn setup_fuzzy_map(CLI::App& app) {
       ->needs(consistent)
       ->excludes(blended_only);
   auto* refined = app.add_flag("--refined", c->refined,
-               "(extrinsic collections) the best fuzzy correspondence made precise: the\nsimilarity fitted to it (upright, unless made with --up none), refined by\none ICP, then by one more that also fits a scale per axis (upright\ncollections); each vertex goes to the nearest vertex of B")
+                               "(extrinsic collections) the best fuzzy correspondence made precise: the\n"
+                               "similarity fitted to it (upright, unless made with --up none), refined by\n"
+                               "one ICP, then by one more that also fits a scale per axis (upright\n"
+                               "collections); each vertex goes to the nearest vertex of B")
       ->excludes(consistent);
   app.add_flag("--no-axis-scales", c->no_axis_scales,
                "with --refined: stop after the similarity ICP (one scale for all axes)")

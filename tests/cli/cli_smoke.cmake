@@ -281,7 +281,8 @@ function(check_refined_map folder file what)
 endfunction()
 check_refined_map(${WORK}/fuzzy_out ${WORK}/a_b_refined.map "")
 check_refined_map(${WORK}/fuzzy_out ${WORK}/a_b_similarity.map "with --no-axis-scales" --no-axis-scales)
-run_cli_error("--no-axis-scales without --refined" "requires" fuzzy-map ${WORK}/fuzzy_out ${stem0} ${stem1} -o ${WORK}/never.map --no-axis-scales)
+run_cli_error("--no-axis-scales without --refined" "requires"
+              fuzzy-map ${WORK}/fuzzy_out ${stem0} ${stem1} -o ${WORK}/never.map --no-axis-scales)
 run_cli_error("bad up axis" "--up: must be 0, 1, 2 or none, got 'sideways'"
               fuzzy ${WORK}/fuzzy_in -o ${WORK}/never --up sideways)
 run_cli(0 out fuzzy ${WORK}/fuzzy_in -o ${WORK}/fuzzy_free --samples 32 --threads 2 --up none --quiet)

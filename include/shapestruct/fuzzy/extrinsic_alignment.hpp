@@ -355,7 +355,8 @@ Similarity refine_similarity_icp(const Eigen::Matrix<double, Eigen::Dynamic, 3>&
     }
     trim_pairs(p, x, d2, 0, keep, scratch);
     const std::size_t reverse_begin = d2.size();
-    const double s2 = size_factor(T) * size_factor(T);  // distances measured in the target frame, reported in the source's
+    // Distances measured in the target frame, reported in the source's.
+    const double s2 = size_factor(T) * size_factor(T);
     for (index_t i = 0; i < Qk.rows(); ++i) {
       const Eigen::Vector3d v = Qk.row(i).transpose();
       const auto nn = tree_l.nearest(Eigen::Vector3d(M.A_inverse * (v - M.t)));
@@ -607,7 +608,8 @@ inline std::vector<free_similarity> free_starts(const principal_frame& fk, const
 ///
 /// All refined alternatives (4, or 24 without an up axis) are returned, in the start order above, with `initial`
 /// the one of largest B_a: the graph optimisation (4.3.7) may pick another. Each alternative's parameters are the
-/// 3 x 4 [s R | t] (S R with axis_scales) read back by extrinsic_transform; B_a uses sigma(S) = options.sigma_fraction * diameter.
+/// 3 x 4 [s R | t] (S R with axis_scales) read back by extrinsic_transform; B_a uses sigma(S) =
+/// options.sigma_fraction * diameter.
 /// Distances to a surface are distances to the nearest of its surface_points. Rows of the scores keep the entries of at least
 /// keep_fraction * the row's largest, at most max_entries_per_row of them (the largest), never fewer than one.
 /// `seconds` is the wall time of the call.
