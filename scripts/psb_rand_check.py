@@ -2,7 +2,7 @@
 """Label transfer through `shapestruct fuzzy-map` on PSB, scored by the area-weighted Rand index: a second route to
 the runner's psb_labels.csv (or psb_free_labels.csv).
 
-usage: psb_rand_check.py SHAPESTRUCT PSB_DIR FUZZY_OUT TARGET:SOURCE [...] [--refined]
+usage: psb_rand_check.py SHAPESTRUCT PSB_DIR FUZZY_OUT TARGET:SOURCE [...] [--refined [--no-axis-scales]]
 
 PSB_DIR is the benchmark's `psb/data` (off/N.off, seg/Benchmark/N/N_k.seg), FUZZY_OUT what `shapestruct fuzzy`
 made of a folder of some of those meshes. For each TARGET:SOURCE the source's first human segmentation (N_0.seg)
@@ -49,8 +49,9 @@ def main():
     rng = random.Random(1)  # the pair-count identity checked against the definition on a small random case
     x, y, w = ([rng.randrange(3) for _ in range(40)], [rng.randrange(4) for _ in range(40)], [rng.random() for _ in range(40)])
     assert abs(rand_index(x, y, w) - brute_force_rand_index(x, y, w)) < 1e-12
+    all_scores = []
     for t, s in a.pairs:
-        image = fuzzy_vertex_map(a.tool, a.fuzzy_out, t, s, a.refined)
+        image = fuzzy_vertex_map(a.tool, a.fuzzy_out, t, s, a.refined, not a.no_axis_scales)
         VT, FT = read_off(os.path.join(a.data, "off", t + ".off"))
         VS, FS = read_off(os.path.join(a.data, "off", s + ".off"))
         LS = read_seg(os.path.join(a.data, "seg", "Benchmark", s, s + "_0.seg"))
@@ -59,6 +60,8 @@ def main():
         humans = sorted(glob.glob(os.path.join(a.data, "seg", "Benchmark", t, t + "_*.seg")))
         scores = [rand_index(labels, read_seg(h), area) for h in humans]
         print(f"target {t} from {s}: {sum(scores) / len(scores):.4f} (mean over {len(scores)} human segmentations)")
+        all_scores.append(sum(scores) / len(scores))
+    print(f"mean over {len(all_scores)} pairs: {sum(all_scores) / len(all_scores):.4f}")
 
 
 if __name__ == "__main__":
