@@ -15,9 +15,8 @@ import json
 import math
 import os
 import random
-import subprocess
-import tempfile
 
+from label_transfer import fuzzy_vertex_map
 from off_mesh import read_off
 
 
@@ -49,23 +48,17 @@ def main():
     names = [os.path.splitext(s["mesh"])[0] for s in shapes]
     rng = random.Random(a.seed)
     errors = []
-    with tempfile.TemporaryDirectory() as tmp:
-        for _ in range(a.pairs):
-            i, j = rng.sample(range(len(names)), 2)
-            out = os.path.join(tmp, "a_b.map")
-            cmd = [a.tool, "fuzzy-map", a.fuzzy_out, names[i], names[j], "-o", out]
-            if a.refined:
-                cmd += ["--refined"] + (["--no-axis-scales"] if a.no_axis_scales else [])
-            subprocess.run(cmd, check=True, capture_output=True)
-            image = [int(line) for line in open(out)]
-            va = read_off(os.path.join(a.generated, shapes[i]["mesh"]))[0]
-            vb = read_off(os.path.join(a.generated, shapes[j]["mesh"]))[0]
-            la = read_landmarks(os.path.join(a.generated, shapes[i]["pts"]))
-            lb = read_landmarks(os.path.join(a.generated, shapes[j]["pts"]))
-            diag = math.dist([min(v[d] for v in vb) for d in range(3)], [max(v[d] for v in vb) for d in range(3)])
-            for name, x in la.items():
-                if name in lb:
-                    errors.append(math.dist(vb[image[nearest(va, x)]], lb[name]) / diag)
+    for _ in range(a.pairs):
+        i, j = rng.sample(range(len(names)), 2)
+        image = fuzzy_vertex_map(a.tool, a.fuzzy_out, names[i], names[j], a.refined, not a.no_axis_scales)
+        va = read_off(os.path.join(a.generated, shapes[i]["mesh"]))[0]
+        vb = read_off(os.path.join(a.generated, shapes[j]["mesh"]))[0]
+        la = read_landmarks(os.path.join(a.generated, shapes[i]["pts"]))
+        lb = read_landmarks(os.path.join(a.generated, shapes[j]["pts"]))
+        diag = math.dist([min(v[d] for v in vb) for d in range(3)], [max(v[d] for v in vb) for d in range(3)])
+        for name, x in la.items():
+            if name in lb:
+                errors.append(math.dist(vb[image[nearest(va, x)]], lb[name]) / diag)
     n = len(errors)
     within = lambda t: sum(e <= t for e in errors) / n
     print(f"{a.pairs} pairs, {n} landmarks: within 0.05 {within(0.05):.3f}, 0.10 {within(0.10):.3f}, "
