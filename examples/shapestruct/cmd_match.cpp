@@ -52,6 +52,7 @@ struct match_options {
   std::string src, tgt, out, precise, candidates, colors;
   long long samples = 256;
   long long features = 10;
+  long long min_features = blended_matcher_options{}.shape.min_features;
   double feature_radius = blended_matcher_options{}.shape.feature_radius;
   std::string selection = selection_name(blended_matcher_options{}.selection);
   long long max_maps = 10000;
@@ -114,6 +115,14 @@ blended_shape<double> prepare_or_explain(const blended_matcher<>& matcher, const
 
 /// A source vertex that a repair dropped (on a small piece, or on no face) has no image; it takes the image of
 /// the nearest kept source vertex, so the dense map still has one line per vertex. Returns how many did.
+/// "5" when every feature is an AGD maximum, else "4 (2 AGD maxima)".
+std::string feature_count(const blended_shape<double>& shape) {
+  std::string text = std::to_string(shape.features().size());
+  if (static_cast<std::size_t>(shape.num_agd_maxima()) != shape.features().size())
+    text += " (" + std::to_string(shape.num_agd_maxima()) + " AGD maxima)";
+  return text;
+}
+
 index_t map_dropped_vertices(const triangle_mesh<double>& source, surface_map<double>& map) {
   std::vector<index_t> kept, dropped;
   for (index_t v = 0; v < map.source_size(); ++v)
@@ -137,7 +146,11 @@ int run_match(const match_options& m) {
   const std::string& colors = m.colors;
   blended_matcher_options o;
   o.shape.num_samples = m.samples;
+  if (m.min_features > m.features)
+    throw cli::usage_error("--min-features " + std::to_string(m.min_features) + " is more than --features " +
+                           std::to_string(m.features) + ": lower it, or raise --features");
   o.shape.max_features = m.features;
+  o.shape.min_features = m.min_features;
   o.shape.feature_radius = m.feature_radius;
   o.selection = selection_rule(m.selection);
   const long long max_enumerated = m.max_enumerated;
@@ -198,9 +211,9 @@ int run_match(const match_options& m) {
     if (shape->repairs().any())
       std::fprintf(stderr, "match: repaired %s: %s\n", path.c_str(), shape->repairs().to_string().c_str());
   if (verbose)
-    std::fprintf(stderr, "  %-12s %8.3f s (features: %zu and %zu)\n", "preprocess",
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), sa.features().size(),
-                 sb.features().size());
+    std::fprintf(stderr, "  %-12s %8.3f s (features: %s and %s)\n", "preprocess",
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+                 feature_count(sa).c_str(), feature_count(sb).c_str());
   auto res = matcher.match(sa, sb);
   if (verbose)
     std::fprintf(stderr, "total %.3f s, %zu candidate maps, %zu blended maps, selected score %.4f\n",
@@ -275,7 +288,12 @@ command_fn setup_match(CLI::App& app) {
       ->check(integer());
   app.add_option("--features", m->features, "at most N AGD-maxima feature points per mesh (default 10)")
       ->type_name("N")
-      ->check(integer());
+      ->check(at_least(3LL));
+  app.add_option("--min-features", m->min_features,
+                 "a mesh with fewer AGD maxima gets its most central point and then farthest points as\n"
+                 "features, up to N (default " + std::to_string(m->min_features) + "; 0 = the maxima alone)")
+      ->type_name("N")
+      ->check(at_least(0LL));
   app.add_option("--feature-radius", m->feature_radius,
                  "AGD maxima closer than R (units of sqrt(area)) are one feature (default 0.15)")
       ->type_name("R");

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <string>
@@ -42,6 +43,11 @@ struct blended_shape_options {
   /// 0.1 on all five benchmark lists: better on humans, SHREC'07 and TOSCA, a little worse on SCAPE and animals
   /// (the measurements: docs/blended_maps.md).
   double feature_radius = 0.15;
+  /// Fewest feature points. A shape whose AGD has fewer maxima (SHREC'07 glasses 43-45: only the two temple tips)
+  /// is completed with its most central vertex (least AGD) and then with geodesic farthest points from the
+  /// features so far. With fewer than three features on a side no triplet map exists, and three give a single
+  /// triplet; four give four (measured: docs/blended_maps.md). 0 = the AGD maxima alone, as in the chapter.
+  index_t min_features = 4;
   /// Samples used to interpolate a per-sample quantity to a vertex (Gaussian weights, eq. 3.2's "smooth
   /// interpolation"); the Gaussian width is the sampling's covering radius.
   index_t interpolation_samples = 6;
@@ -108,10 +114,12 @@ class blended_shape {
   blended_shape(const Eigen::Ref<const matrix_x3<Scalar>>& V, const Eigen::Ref<const face_matrix>& F,
                 const blended_shape_options& options = {}) {
     if (options.num_samples < 3 || options.max_features < 3 || !(options.feature_radius > 0) ||
+        options.min_features < 0 || options.min_features > options.max_features ||
         options.interpolation_samples < 1 || !(options.cut_clearance >= 0) || !std::isfinite(options.cut_clearance))
       throw invalid_input(input_error::bad_parameter, no_index,
                           "blended_shape: need num_samples >= 3, max_features >= 3, feature_radius > 0, "
-                          "interpolation_samples >= 1 and a finite cut_clearance >= 0");
+                          "0 <= min_features <= max_features, interpolation_samples >= 1 and a finite "
+                          "cut_clearance >= 0");
     repaired_sphere<Scalar> r = repair_to_sphere<Scalar>(V, F, options.repairs, "blended_shape",
                                                                options.flattening.accept_pinched_vertices);
     triangle_mesh<Scalar> m = std::move(r.mesh);
@@ -145,6 +153,8 @@ class blended_shape {
     agd_ = table_.rowwise().mean();
     auto maxima = agd_local_maxima<Scalar>(mesh_.V, mesh_.F, agd_, options.feature_radius);
     if (static_cast<index_t>(maxima.size()) > options.max_features) maxima.resize(static_cast<std::size_t>(options.max_features));
+    agd_maxima_ = static_cast<index_t>(maxima.size());
+    if (agd_maxima_ < options.min_features) complete_features(maxima, options.min_features);
     features_ = std::move(maxima);
     feature_table_ = geo_->distance_table(std::span<const index_t>(features_), options.threads);
     // The flattening is built once, after the features, with its cut already chosen: the automatic cut is the
@@ -196,6 +206,8 @@ class blended_shape {
   [[nodiscard]] Scalar sample_spacing() const noexcept { return spacing_; }
   /// (#samples x #convexity radii) signed convexity of the surface around each sample (geodesic_ball_convexity).
   [[nodiscard]] const matrix_x<Scalar>& sample_convexity() const noexcept { return convexity_; }
+  /// How many of features() are AGD maxima (they come first); the rest completed them to min_features.
+  [[nodiscard]] index_t num_agd_maxima() const noexcept { return agd_maxima_; }
   /// AGD (#V, unit-area units, estimated from the samples) and its maxima (feature points), strongest first.
   [[nodiscard]] const vector_x<Scalar>& agd() const noexcept { return agd_; }
   [[nodiscard]] const std::vector<index_t>& features() const noexcept { return features_; }
@@ -230,7 +242,25 @@ class blended_shape {
   matrix_x<Scalar> table_;
   matrix_x<Scalar> convexity_;
   vector_x<Scalar> agd_;
+  /// Adds the most central vertex, then geodesic farthest points, until there are `wanted` features (fewer only
+  /// on a mesh with fewer vertices).
+  void complete_features(std::vector<index_t>& features, index_t wanted) const {
+    index_t centre = 0;
+    agd_.minCoeff(&centre);
+    if (std::find(features.begin(), features.end(), centre) == features.end()) features.push_back(centre);
+    vector_x<Scalar> nearest = vector_x<Scalar>::Constant(mesh_.V.rows(), std::numeric_limits<Scalar>::infinity());
+    typename dijkstra_geodesics<Scalar>::workspace ws;
+    for (const index_t f : features) geo_->update_distances(f, nearest, ws);
+    while (static_cast<index_t>(features.size()) < wanted) {
+      index_t farthest = 0;
+      if (!(nearest.maxCoeff(&farthest) > Scalar(0))) break;
+      features.push_back(farthest);
+      geo_->update_distances(farthest, nearest, ws);
+    }
+  }
+
   std::vector<index_t> features_;
+  index_t agd_maxima_ = 0;
   matrix_x<Scalar> feature_table_;
   Eigen::Matrix<index_t, Eigen::Dynamic, Eigen::Dynamic> interp_index_;
   matrix_x<Scalar> interp_weight_;

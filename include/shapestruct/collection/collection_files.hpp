@@ -85,7 +85,8 @@ class binary_reader {
 inline constexpr std::uint32_t record_magic = 0x52535353;     // "SSSR"
 inline constexpr std::uint32_t alignment_magic = 0x41535353;  // "SSSA"
 inline constexpr std::uint32_t collection_file_version = 1;
-inline constexpr std::uint32_t alignment_file_version = 2;  // 2: with the aligner's preferred alternative
+inline constexpr std::uint32_t alignment_file_version = 3;  // 2: the aligner's preferred alternative; 3: blended
+// maps from at least blended_shape_options::min_features features (intrinsic alignments made before differ)
 
 template <class M>
 void put_matrix(binary_writer& w, const M& m) {

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: MIT
+// blended_shape completes too few AGD maxima to blended_shape_options::min_features feature points.
+#include <algorithm>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include <doctest/doctest.h>
+
+#include "blended_fixtures.hpp"
+#include "shapestruct/blended/blended_matcher.hpp"
+#include "shapestruct/blended/blended_shape.hpp"
+#include "shapestruct/core/errors.hpp"
+#include "shapestruct/eval/geodesic_error.hpp"
+#include "shapestruct/generate/primitive_meshes.hpp"
+
+using namespace shapestruct;
+
+namespace {
+blended_shape_options small_options() {
+  blended_shape_options o;
+  o.num_samples = 96;
+  o.threads = 2;
+  return o;
+}
+
+/// A body with two arms pointing (nearly) opposite ways, of different lengths: its AGD has two maxima, the tips,
+/// as a pair of glasses has only its two temple tips.
+triangle_mesh<double> two_tips() {
+  auto m = make_icosphere<double>(4);
+  const Eigen::Vector3d dirs[2] = {Eigen::Vector3d(1, 0.1, 0.05).normalized(), Eigen::Vector3d(-1, 0.15, -0.1).normalized()};
+  const double lengths[2] = {1.6, 1.2};
+  for (index_t v = 0; v < m.V.rows(); ++v) {
+    const Eigen::Vector3d p = m.V.row(v).transpose().normalized();
+    double r = 1;
+    for (int k = 0; k < 2; ++k) {
+      const double t = std::max(0.0, (p.dot(dirs[k]) - 0.88) / (1 - 0.88));
+      r += lengths[k] * t * t;
+    }
+    m.V.row(v) = (r * p).transpose();
+  }
+  return m;
+}
+}  // namespace
+
+TEST_CASE("blended_shape completes two AGD maxima with the most central vertex and the farthest point") {
+  const auto m = two_tips();
+  blended_shape_options maxima_only = small_options();
+  maxima_only.min_features = 0;
+  const blended_shape<double> plain(m.V, m.F, maxima_only);
+  REQUIRE(plain.features().size() == 2);
+  CHECK(plain.num_agd_maxima() == 2);
+
+  const blended_shape<double> completed(m.V, m.F, small_options());
+  REQUIRE(completed.features().size() == 4);
+  CHECK(completed.num_agd_maxima() == 2);
+  const auto& f = completed.features();
+  CHECK(f[0] == plain.features()[0]);  // the maxima first, unchanged
+  CHECK(f[1] == plain.features()[1]);
+  index_t centre = 0;
+  completed.agd().minCoeff(&centre);
+  CHECK(f[2] == centre);
+  // The fourth lies farthest from the first three, by the brute-force minimum over their distances.
+  const auto& geo = completed.geodesics();
+  vector_x<double> nearest = vector_x<double>::Constant(completed.mesh().V.rows(), std::numeric_limits<double>::infinity());
+  for (int k = 0; k < 3; ++k) nearest = nearest.cwiseMin(geo.distances_from(f[static_cast<std::size_t>(k)]));
+  CHECK(nearest[f[3]] == doctest::Approx(nearest.maxCoeff()));
+  CHECK(completed.feature_distances().cols() == 4);
+}
+
+TEST_CASE("blended_shape keeps enough AGD maxima as they are") {
+  const auto m = test::armed_sphere(4, 5);
+  const blended_shape<double> s(m.V, m.F, small_options());
+  CHECK(s.features().size() >= 4);
+  CHECK(static_cast<std::size_t>(s.num_agd_maxima()) == s.features().size());
+}
+
+TEST_CASE("blended_matcher matches through the completed features, not the fallback of too few") {
+  blended_matcher_options o;
+  o.shape = small_options();
+  o.refine = false;
+  o.threads = 2;
+  const blended_matcher<> completed(o);
+  blended_matcher_options maxima_only = o;
+  maxima_only.shape.min_features = 0;
+  const blended_matcher<> plain(maxima_only);
+
+  // Two maxima: no triplet at all, only the identity of the flattenings, unless the features are completed.
+  const auto two = two_tips();
+  const auto e_plain = plain.prepare(two);
+  CHECK(plain.match(e_plain, e_plain).candidates.size() == 1);
+  const auto e_completed = completed.prepare(two);
+  CHECK(completed.match(e_completed, e_completed).candidates.size() > 1);
+
+  // Three maxima (two arm tips and the far side of the body) and a completed fourth: the identity is found.
+  const auto m = test::armed_sphere(4, 2);
+  const auto a = completed.prepare(m);
+  REQUIRE(a.num_agd_maxima() == 3);
+  REQUIRE(a.features().size() == 4);
+  const auto r = completed.match(a, a);
+  std::vector<index_t> pred, truth;
+  for (index_t v = 0; v < m.V.rows(); v += 7) {
+    pred.push_back(r.map.target_vertex(v));
+    truth.push_back(v);
+  }
+  const auto e = benchmark_geodesic_errors(a.mesh().V, a.mesh().F, a.geodesics(), std::span<const index_t>(pred),
+                                           std::span<const index_t>(truth));
+  CHECK(summarize_errors(std::span<const double>(e)).mean < 0.02);
+}
+
+TEST_CASE("blended_shape refuses min_features above max_features or below zero") {
+  const auto m = test::armed_sphere(3, 2);
+  blended_shape_options o = small_options();
+  o.min_features = 11;
+  CHECK_THROWS_AS(blended_shape<double>(m.V, m.F, o), invalid_input);
+  o.min_features = -1;
+  CHECK_THROWS_AS(blended_shape<double>(m.V, m.F, o), invalid_input);
+}
