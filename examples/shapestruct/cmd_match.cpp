@@ -52,7 +52,7 @@ struct match_options {
   std::string src, tgt, out, precise, candidates, colors;
   long long samples = 256;
   long long features = 10;
-  long long min_features = blended_matcher_options{}.shape.min_features;
+  long long min_features = -1;  // not given: the library's default, at most --features
   double feature_radius = blended_matcher_options{}.shape.feature_radius;
   std::string selection = selection_name(blended_matcher_options{}.selection);
   long long max_maps = 10000;
@@ -113,8 +113,6 @@ blended_shape<double> prepare_or_explain(const blended_matcher<>& matcher, const
   }
 }
 
-/// A source vertex that a repair dropped (on a small piece, or on no face) has no image; it takes the image of
-/// the nearest kept source vertex, so the dense map still has one line per vertex. Returns how many did.
 /// "5" when every feature is an AGD maximum, else "4 (2 AGD maxima)".
 std::string feature_count(const blended_shape<double>& shape) {
   std::string text = std::to_string(shape.features().size());
@@ -122,6 +120,9 @@ std::string feature_count(const blended_shape<double>& shape) {
     text += " (" + std::to_string(shape.num_agd_maxima()) + " AGD maxima)";
   return text;
 }
+
+/// A source vertex that a repair dropped (on a small piece, or on no face) has no image; it takes the image of
+/// the nearest kept source vertex, so the dense map still has one line per vertex. Returns how many did.
 
 index_t map_dropped_vertices(const triangle_mesh<double>& source, surface_map<double>& map) {
   std::vector<index_t> kept, dropped;
@@ -150,7 +151,7 @@ int run_match(const match_options& m) {
     throw cli::usage_error("--min-features " + std::to_string(m.min_features) + " is more than --features " +
                            std::to_string(m.features) + ": lower it, or raise --features");
   o.shape.max_features = m.features;
-  o.shape.min_features = m.min_features;
+  if (m.min_features >= 0) o.shape.min_features = m.min_features;
   o.shape.feature_radius = m.feature_radius;
   o.selection = selection_rule(m.selection);
   const long long max_enumerated = m.max_enumerated;
@@ -291,7 +292,8 @@ command_fn setup_match(CLI::App& app) {
       ->check(at_least(3LL));
   app.add_option("--min-features", m->min_features,
                  "a mesh with fewer AGD maxima gets its most central point and then farthest points as\n"
-                 "features, up to N (default " + std::to_string(m->min_features) + "; 0 = the maxima alone)")
+                 "features, up to N (default " + std::to_string(blended_shape_options{}.min_features) +
+                     " or --features if fewer; 0 = the maxima alone)")
       ->type_name("N")
       ->check(at_least(0LL));
   app.add_option("--feature-radius", m->feature_radius,

@@ -184,6 +184,8 @@ run_cli_error("too few --features" "--features: must be >= 3, got 2"
               match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --features 2)
 run_cli_error("--min-features above --features" "--min-features 6 is more than --features 5: lower it, or raise --features"
               match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --features 5 --min-features 6)
+# --features below the default --min-features caps it rather than being refused.
+run_cli(0 out match ${first_mesh} ${second_mesh} -o ${WORK}/three_features.map --refine none --features 3)
 # Every selection rule gives a map of the same length (which rule wins is measured in docs/blended_maps.md).
 run_cli(0 out match ${first_mesh} ${second_mesh} -o ${WORK}/by_distortion.map --refine none --selection confidence-distortion)
 file(STRINGS ${WORK}/by_distortion.map distortion_lines)

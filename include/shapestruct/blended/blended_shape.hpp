@@ -47,6 +47,7 @@ struct blended_shape_options {
   /// is completed with its most central vertex (least AGD) and then with geodesic farthest points from the
   /// features so far. With fewer than three features on a side no triplet map exists, and three give a single
   /// triplet; four give four (measured: docs/blended_maps.md). 0 = the AGD maxima alone, as in the chapter.
+  /// Never more than max_features.
   index_t min_features = 4;
   /// Samples used to interpolate a per-sample quantity to a vertex (Gaussian weights, eq. 3.2's "smooth
   /// interpolation"); the Gaussian width is the sampling's covering radius.
@@ -114,11 +115,11 @@ class blended_shape {
   blended_shape(const Eigen::Ref<const matrix_x3<Scalar>>& V, const Eigen::Ref<const face_matrix>& F,
                 const blended_shape_options& options = {}) {
     if (options.num_samples < 3 || options.max_features < 3 || !(options.feature_radius > 0) ||
-        options.min_features < 0 || options.min_features > options.max_features ||
+        options.min_features < 0 ||
         options.interpolation_samples < 1 || !(options.cut_clearance >= 0) || !std::isfinite(options.cut_clearance))
       throw invalid_input(input_error::bad_parameter, no_index,
                           "blended_shape: need num_samples >= 3, max_features >= 3, feature_radius > 0, "
-                          "0 <= min_features <= max_features, interpolation_samples >= 1 and a finite "
+                          "min_features >= 0, interpolation_samples >= 1 and a finite "
                           "cut_clearance >= 0");
     repaired_sphere<Scalar> r = repair_to_sphere<Scalar>(V, F, options.repairs, "blended_shape",
                                                                options.flattening.accept_pinched_vertices);
@@ -154,7 +155,8 @@ class blended_shape {
     auto maxima = agd_local_maxima<Scalar>(mesh_.V, mesh_.F, agd_, options.feature_radius);
     if (static_cast<index_t>(maxima.size()) > options.max_features) maxima.resize(static_cast<std::size_t>(options.max_features));
     agd_maxima_ = static_cast<index_t>(maxima.size());
-    if (agd_maxima_ < options.min_features) complete_features(maxima, options.min_features);
+    const index_t wanted = std::min(options.min_features, options.max_features);
+    if (agd_maxima_ < wanted) complete_features(maxima, wanted);
     features_ = std::move(maxima);
     feature_table_ = geo_->distance_table(std::span<const index_t>(features_), options.threads);
     // The flattening is built once, after the features, with its cut already chosen: the automatic cut is the
