@@ -123,7 +123,6 @@ std::string feature_count(const blended_shape<double>& shape) {
 
 /// A source vertex that a repair dropped (on a small piece, or on no face) has no image; it takes the image of
 /// the nearest kept source vertex, so the dense map still has one line per vertex. Returns how many did.
-
 index_t map_dropped_vertices(const triangle_mesh<double>& source, surface_map<double>& map) {
   std::vector<index_t> kept, dropped;
   for (index_t v = 0; v < map.source_size(); ++v)
