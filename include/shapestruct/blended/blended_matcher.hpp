@@ -422,30 +422,37 @@ class blended_matcher {
       todo.resize(static_cast<std::size_t>(nv));
       std::iota(todo.begin(), todo.end(), index_t(0));
     }
-    detail::parallel_for(static_cast<index_t>(todo.size()),
-                         detail::resolve_threads(options_.threads, "blended intrinsic maps"), [&](index_t ti) {
-                           const index_t v = todo[static_cast<std::size_t>(ti)];
-                           const auto z = fa.coordinate(v);
-                           vec3<Scalar> acc = vec3<Scalar>::Zero();
-                           Scalar wsum = 0, best_c = -1;
-                           vec3<Scalar> best_p = vec3<Scalar>::Zero();
-                           for (index_t i : bc.maps) {
-                             Scalar c = 0;
-                             for (index_t k = 0; k < idx.cols(); ++k) c += wts(v, k) * r.confidence(i, idx(v, k));
-                             const auto q = fb.locate(r.candidates[static_cast<std::size_t>(i)].transform(z));
-                             const vec3<Scalar> p = q.position(Vb, Fb);
-                             if (c > best_c) {
-                               best_c = c;
-                               best_p = p;
-                             }
-                             acc += c * p;
-                             wsum += c;
-                           }
-                           const vec3<Scalar> centroid = wsum > Scalar(1e-12) ? vec3<Scalar>(acc / wsum) : best_p;
-                           const auto hit = b.closest_points().query(centroid);
-                           pts[static_cast<std::size_t>(v)] = hit.location;
-                           img.row(v) = hit.point.transpose();
-                         });
+    // Each vertex's result depends on that vertex alone; visiting them in a connected order lets each image be
+    // found by a short walk from the previous vertex's (files often list vertices in no spatial order).
+    todo = connected_order(a, todo);
+    const unsigned workers = detail::resolve_threads(options_.threads, "blended intrinsic maps");
+    // Where each worker last found each map's image: the next vertex's image usually lies a step or two away.
+    std::vector<std::vector<index_t>> hints(workers, std::vector<index_t>(bc.maps.size(), no_index));
+    detail::parallel_for(static_cast<index_t>(todo.size()), workers, [&](unsigned worker, index_t ti) {
+      const index_t v = todo[static_cast<std::size_t>(ti)];
+      const auto z = fa.coordinate(v);
+      vec3<Scalar> acc = vec3<Scalar>::Zero();
+      Scalar wsum = 0, best_c = -1;
+      vec3<Scalar> best_p = vec3<Scalar>::Zero();
+      auto& hint = hints[worker];
+      for (std::size_t m = 0; m < bc.maps.size(); ++m) {
+        const index_t i = bc.maps[m];
+        Scalar c = 0;
+        for (index_t k = 0; k < idx.cols(); ++k) c += wts(v, k) * r.confidence(i, idx(v, k));
+        const auto q = fb.locate(r.candidates[static_cast<std::size_t>(i)].transform(z), hint[m]);
+        const vec3<Scalar> p = q.position(Vb, Fb);
+        if (c > best_c) {
+          best_c = c;
+          best_p = p;
+        }
+        acc += c * p;
+        wsum += c;
+      }
+      const vec3<Scalar> centroid = wsum > Scalar(1e-12) ? vec3<Scalar>(acc / wsum) : best_p;
+      const auto hit = b.closest_points().query(centroid);
+      pts[static_cast<std::size_t>(v)] = hit.location;
+      img.row(v) = hit.point.transpose();
+    }, index_t(64));
     // Score: area-weighted mean of 2 / (r + 1/r) over the source faces, r = image area / face area (both unit).
     Scalar score = 0, scored_area = 0;
     for (index_t f = 0; f < Fa.rows(); f += face_stride) {
@@ -468,6 +475,33 @@ class blended_matcher {
       if (internal.points[v].valid()) internal.nearest[v] = internal.points[v].nearest_corner(Fb);
     bc.map = to_input_numbering(a, b, internal);
     return internal;
+  }
+
+  /// `vertices` reordered breadth first along the source's edges (each component from its lowest listed vertex).
+  static std::vector<index_t> connected_order(const blended_shape<double>& a, const std::vector<index_t>& vertices) {
+    const auto& g = a.geodesics().graph();
+    std::vector<char> listed(static_cast<std::size_t>(g.num_vertices()), 0), seen(listed.size(), 0);
+    for (const index_t v : vertices) listed[static_cast<std::size_t>(v)] = 1;
+    std::vector<index_t> order, queue;
+    order.reserve(vertices.size());
+    queue.reserve(listed.size());
+    for (const index_t root : vertices) {
+      if (seen[static_cast<std::size_t>(root)]) continue;
+      seen[static_cast<std::size_t>(root)] = 1;
+      queue.assign(1, root);
+      for (std::size_t head = 0; head < queue.size(); ++head) {
+        const index_t v = queue[head];
+        if (listed[static_cast<std::size_t>(v)]) order.push_back(v);
+        for (index_t k = g.offsets[static_cast<std::size_t>(v)]; k < g.offsets[static_cast<std::size_t>(v) + 1]; ++k) {
+          const index_t w = g.neighbours[static_cast<std::size_t>(k)];
+          if (!seen[static_cast<std::size_t>(w)]) {
+            seen[static_cast<std::size_t>(w)] = 1;
+            queue.push_back(w);
+          }
+        }
+      }
+    }
+    return order;
   }
 
   /// A map between the internal meshes back in the input numbering (repairs may have renumbered or added

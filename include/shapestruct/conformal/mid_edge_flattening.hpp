@@ -129,14 +129,13 @@ class mid_edge_flattening {
   /// The surface point whose coordinate is z; points outside the image (near infinity) are clamped to the
   /// nearest triangle. `distance` (optional) receives the planar distance of the clamp (0 inside). O(log F).
   [[nodiscard]] surface_point<Scalar> locate(complex z, Scalar* distance = nullptr) const {
-    const auto h = locator_.locate(z);
-    surface_point<Scalar> out;
-    if (h.triangle == no_index) return out;
-    const index_t t = h.triangle;
-    out.face = sub_face_[static_cast<std::size_t>(t)];
-    out.bary = sub_bary_[static_cast<std::size_t>(t)] * h.bary;
-    if (distance) *distance = h.distance;
-    return out;
+    return to_surface(locator_.locate(z), distance);
+  }
+
+  /// locate(z), the search started at `hint` (a triangle of the split triangulation: no_index the first time) and
+  /// set to where z was found; the same answer as locate, in a few steps when consecutive queries lie close.
+  [[nodiscard]] surface_point<Scalar> locate(complex z, index_t& hint, Scalar* distance = nullptr) const {
+    return to_surface(locator_.locate_from(z, hint), distance);
   }
 
   /// The vertex whose planar image is nearest to z (a kd-tree query, O(log V)): a cheaper, vertex-accurate
@@ -175,6 +174,17 @@ class mid_edge_flattening {
   }
 
  private:
+  [[nodiscard]] surface_point<Scalar> to_surface(const typename planar_triangle_locator<Scalar>::hit& h,
+                                                 Scalar* distance) const {
+    surface_point<Scalar> out;
+    if (h.triangle == no_index) return out;
+    const index_t t = h.triangle;
+    out.face = sub_face_[static_cast<std::size_t>(t)];
+    out.bary = sub_bary_[static_cast<std::size_t>(t)] * h.bary;
+    if (distance) *distance = h.distance;
+    return out;
+  }
+
   static Scalar cross(complex u, complex v) { return u.real() * v.imag() - u.imag() * v.real(); }
 
   void build_edges(const Eigen::Ref<const matrix_x3<Scalar>>& V, const Eigen::Ref<const face_matrix>& F,

@@ -70,9 +70,48 @@ class planar_triangle_locator {
     order_ = std::move(small);
     nodes_.reserve(2 * order_.size() / leaf_size + 2);
     build(0, order_.size());
+    build_walk();
   }
 
   [[nodiscard]] index_t num_triangles() const noexcept { return tris_.rows(); }
+  /// Whether locate_from may answer from its walk at triangle t (see there).
+  [[nodiscard]] bool walkable(index_t t) const { return walkable_[static_cast<std::size_t>(t)] != 0; }
+
+  /// locate(q), started from the triangle `hint` (a previous answer; no_index or out of range: none) and set to the
+  /// answer. Consecutive queries that lie close together (the images of one point under similar maps, neighbouring
+  /// points) then cost a few steps of a walk across edges instead of a tree search. The walk answers only where q
+  /// lies clearly inside a walkable triangle, one whose box meets no degenerate, inverted or folded triangle's, so
+  /// that no other triangle can hold q. Elsewhere (outside the image, within a tolerance band of an edge, around a
+  /// fold-over, after max_walk_steps) it falls back to locate(q), so it returns what locate returns.
+  [[nodiscard]] hit locate_from(complex q, index_t& hint) const {
+    if (hint >= 0 && hint < tris_.rows() && std::isfinite(q.real()) && std::isfinite(q.imag())) {
+      // locate() tries the big triangles first, and they may overlap others: it answers with them, so does this.
+      for (index_t t : big_) {
+        if (!boxes_[static_cast<std::size_t>(t)].contains(q)) continue;
+        hit h = test(t, q);
+        if (h.distance == Scalar(0)) {
+          hint = t;
+          return h;
+        }
+      }
+      index_t t = hint;
+      for (int step = 0; step < max_walk_steps && t != no_index && walkable(t); ++step) {
+        Scalar l[3];
+        barycentric(t, q, l);
+        const int k = static_cast<int>(std::min_element(l, l + 3) - l);
+        if (l[k] >= walk_margin) {
+          hint = t;
+          return test(t, q);
+        }
+        if (l[k] >= -walk_margin) break;  // on or near an edge: the tree decides, as it always has
+        t = neighbours_(t, k);
+      }
+    }
+    hit h = locate(q);
+    hint = h.triangle;
+    return h;
+  }
+
   [[nodiscard]] const std::vector<complex>& points() const noexcept { return pts_; }
   [[nodiscard]] const Eigen::Matrix<index_t, Eigen::Dynamic, 3>& triangles() const noexcept { return tris_; }
 
@@ -181,6 +220,146 @@ class planar_triangle_locator {
     std::size_t first = 0, count = 0;  // range in order_ (leaves: count > 0)
   };
 
+  static constexpr int max_walk_steps = 32;
+  // Far outside test()'s tolerance (1e-10), so that a point the walk accepts is in no neighbour's tolerance band.
+  static constexpr Scalar walk_margin = Scalar(1e-6);
+
+  /// A triangle too thin to hold a point (test()'s rule), or so small against its distance from the origin that its
+  /// corners differ only in the last digits: there barycentric coordinates are rounding noise.
+  [[nodiscard]] bool degenerate(index_t t) const {
+    const complex p0 = pts_[static_cast<std::size_t>(tris_(t, 0))], p1 = pts_[static_cast<std::size_t>(tris_(t, 1))],
+                  p2 = pts_[static_cast<std::size_t>(tris_(t, 2))];
+    const Scalar area = cross(p1 - p0, p2 - p0);
+    const Scalar scale = std::norm(p1 - p0) + std::norm(p2 - p0) + std::norm(p2 - p1);
+    const Scalar reach = std::max({std::norm(p0), std::norm(p1), std::norm(p2)});
+    return !(std::abs(area) > Scalar(1e-14) * scale && scale > Scalar(1e-16) * reach);
+  }
+
+  /// Barycentric coordinates of q in triangle t (not degenerate), computed exactly as test() does.
+  void barycentric(index_t t, complex q, Scalar* l) const {
+    const complex p0 = pts_[static_cast<std::size_t>(tris_(t, 0))], p1 = pts_[static_cast<std::size_t>(tris_(t, 1))],
+                  p2 = pts_[static_cast<std::size_t>(tris_(t, 2))];
+    const Scalar area = cross(p1 - p0, p2 - p0);
+    l[0] = cross(p1 - q, p2 - q) / area;
+    l[1] = cross(p2 - q, p0 - q) / area;
+    l[2] = Scalar(1) - l[0] - l[1];
+  }
+
+  /// The walk's tables: the neighbour across the edge opposite each corner (no_index on the boundary or where more
+  /// than two triangles share the edge), and which triangles the walk may answer in.
+  void build_walk() {
+    const index_t n = tris_.rows();
+    neighbours_.setConstant(n, 3, no_index);
+    struct half_edge {
+      index_t lo, hi, t;
+      int corner;
+    };
+    std::vector<half_edge> halves;
+    halves.reserve(static_cast<std::size_t>(3 * n));
+    for (index_t t = 0; t < n; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const index_t i = tris_(t, (k + 1) % 3), j = tris_(t, (k + 2) % 3);
+        halves.push_back({std::min(i, j), std::max(i, j), t, k});
+      }
+    std::sort(halves.begin(), halves.end(), [](const half_edge& x, const half_edge& y) {
+      return x.lo != y.lo ? x.lo < y.lo : (x.hi != y.hi ? x.hi < y.hi : x.t < y.t);
+    });
+    // Triangles that may overlap others: degenerate ones, the two of an edge lying on the same side of it (a fold),
+    // and inverted ones (their orientation against the majority, once each triangle's corner order is made
+    // consistent with its neighbours'). The big triangles are not counted: the walk tests them first, as locate does.
+    std::vector<char> suspect(static_cast<std::size_t>(n), 0);
+    std::vector<signed char> order_sign(static_cast<std::size_t>(n), 0);  // +1: corner order kept, -1: reversed
+    for (index_t t = 0; t < n; ++t) suspect[static_cast<std::size_t>(t)] = degenerate(t);
+    for (std::size_t i = 0; i < halves.size();) {
+      std::size_t j = i + 1;
+      while (j < halves.size() && halves[j].lo == halves[i].lo && halves[j].hi == halves[i].hi) ++j;
+      if (j == i + 2) {
+        const half_edge &x = halves[i], &y = halves[i + 1];
+        neighbours_(x.t, x.corner) = y.t;
+        neighbours_(y.t, y.corner) = x.t;
+        const complex p = pts_[static_cast<std::size_t>(x.lo)], d = pts_[static_cast<std::size_t>(x.hi)] - p;
+        const Scalar side_x = cross(d, pts_[static_cast<std::size_t>(tris_(x.t, x.corner))] - p);
+        const Scalar side_y = cross(d, pts_[static_cast<std::size_t>(tris_(y.t, y.corner))] - p);
+        if (!(side_x * side_y < 0)) {
+          suspect[static_cast<std::size_t>(x.t)] = 1;
+          suspect[static_cast<std::size_t>(y.t)] = 1;
+        }
+      } else if (j > i + 2) {
+        for (std::size_t h = i; h < j; ++h) suspect[static_cast<std::size_t>(halves[h].t)] = 1;
+      }
+      i = j;
+    }
+    // Corner orders made consistent breadth first: neighbours run along their shared edge in opposite directions.
+    const auto runs_forward = [&](index_t t, int corner) {  // the edge opposite `corner`, from its lower point up
+      return tris_(t, (corner + 1) % 3) < tris_(t, (corner + 2) % 3);
+    };
+    index_t agree = 0, disagree = 0;
+    std::vector<signed char> geometric(static_cast<std::size_t>(n), 0);
+    for (index_t t = 0; t < n; ++t) {
+      const complex p0 = pts_[static_cast<std::size_t>(tris_(t, 0))];
+      const Scalar area =
+          cross(pts_[static_cast<std::size_t>(tris_(t, 1))] - p0, pts_[static_cast<std::size_t>(tris_(t, 2))] - p0);
+      geometric[static_cast<std::size_t>(t)] = area > 0 ? 1 : (area < 0 ? -1 : 0);
+    }
+    std::vector<index_t> queue;
+    for (index_t root = 0; root < n; ++root) {
+      if (order_sign[static_cast<std::size_t>(root)] != 0) continue;
+      order_sign[static_cast<std::size_t>(root)] = 1;
+      queue.assign(1, root);
+      for (std::size_t head = 0; head < queue.size(); ++head) {
+        const index_t t = queue[head];
+        for (int k = 0; k < 3; ++k) {
+          const index_t u = neighbours_(t, k);
+          if (u == no_index || order_sign[static_cast<std::size_t>(u)] != 0) continue;
+          int ku = 0;
+          while (ku < 3 && neighbours_(u, ku) != t) ++ku;
+          const bool opposite = runs_forward(t, k) != runs_forward(u, ku);
+          const signed char parent = order_sign[static_cast<std::size_t>(t)];
+          order_sign[static_cast<std::size_t>(u)] = static_cast<signed char>(opposite ? parent : -parent);
+          queue.push_back(u);
+        }
+      }
+    }
+    for (index_t t = 0; t < n; ++t) {
+      const int s = geometric[static_cast<std::size_t>(t)] * order_sign[static_cast<std::size_t>(t)];
+      (s > 0 ? agree : disagree) += s != 0;
+    }
+    const int majority = agree >= disagree ? 1 : -1;
+    for (index_t t = 0; t < n; ++t)
+      if (geometric[static_cast<std::size_t>(t)] * order_sign[static_cast<std::size_t>(t)] != majority)
+        suspect[static_cast<std::size_t>(t)] = 1;
+    for (index_t t : big_) suspect[static_cast<std::size_t>(t)] = 0;
+    // Overlapping triangles have overlapping boxes: every triangle whose box meets a suspect's is left to the tree.
+    std::vector<char> near_fold(static_cast<std::size_t>(n), 0);
+    for (index_t t = 0; t < n; ++t)
+      if (suspect[static_cast<std::size_t>(t)]) mark_boxes_meeting(boxes_[static_cast<std::size_t>(t)], near_fold);
+    walkable_.assign(static_cast<std::size_t>(n), 0);
+    for (index_t t = 0; t < n; ++t) walkable_[static_cast<std::size_t>(t)] = !near_fold[static_cast<std::size_t>(t)];
+  }
+
+  /// Sets marks[t] for every indexed triangle (the tree's and the big ones) whose box meets `b`.
+  void mark_boxes_meeting(const box& b, std::vector<char>& marks) const {
+    const auto meets = [&](const box& c) {
+      return c.lo[0] <= b.hi[0] && b.lo[0] <= c.hi[0] && c.lo[1] <= b.hi[1] && b.lo[1] <= c.hi[1];
+    };
+    for (index_t t : big_)
+      if (meets(boxes_[static_cast<std::size_t>(t)])) marks[static_cast<std::size_t>(t)] = 1;
+    if (nodes_.empty()) return;
+    std::vector<std::size_t> stack{0};
+    while (!stack.empty()) {
+      const node& nd = nodes_[stack.back()];
+      stack.pop_back();
+      if (!meets(nd.bounds)) continue;
+      if (nd.count > 0) {
+        for (std::size_t i = nd.first; i < nd.first + nd.count; ++i)
+          if (meets(boxes_[static_cast<std::size_t>(order_[i])])) marks[static_cast<std::size_t>(order_[i])] = 1;
+      } else {
+        stack.push_back(nd.left);
+        stack.push_back(nd.right);
+      }
+    }
+  }
+
   Scalar far_value() const {
     const box& b = nodes_.empty() ? box{} : nodes_[0].bounds;
     return std::max(std::abs(b.hi[0]), std::abs(b.lo[0])) * Scalar(4) + Scalar(1);
@@ -262,6 +441,8 @@ class planar_triangle_locator {
   std::vector<box> boxes_;
   std::vector<complex> centers_;
   std::vector<node> nodes_;
+  Eigen::Matrix<index_t, Eigen::Dynamic, 3> neighbours_;
+  std::vector<char> walkable_;
 };
 
 }  // namespace shapestruct
