@@ -332,7 +332,10 @@ class planar_triangle_locator {
     // Overlapping triangles have overlapping boxes: every triangle whose box meets a suspect's is left to the tree.
     std::vector<char> near_fold(static_cast<std::size_t>(n), 0);
     for (index_t t = 0; t < n; ++t)
-      if (suspect[static_cast<std::size_t>(t)]) mark_boxes_meeting(boxes_[static_cast<std::size_t>(t)], near_fold);
+      if (suspect[static_cast<std::size_t>(t)]) {
+        near_fold[static_cast<std::size_t>(t)] = 1;  // even when its box is not a box (non-finite corners)
+        mark_boxes_meeting(boxes_[static_cast<std::size_t>(t)], near_fold);
+      }
     walkable_.assign(static_cast<std::size_t>(n), 0);
     for (index_t t = 0; t < n; ++t) walkable_[static_cast<std::size_t>(t)] = !near_fold[static_cast<std::size_t>(t)];
   }
