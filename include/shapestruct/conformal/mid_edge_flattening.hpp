@@ -27,6 +27,7 @@
 #include "shapestruct/core/types.hpp"
 #include "shapestruct/core/validate.hpp"
 #include "shapestruct/detail/disjoint_sets.hpp"
+#include "shapestruct/detail/sorted_half_edges.hpp"
 #include "shapestruct/geometry/cotan_laplacian.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
 #include "shapestruct/knn/knn_index.hpp"
@@ -191,39 +192,26 @@ class mid_edge_flattening {
                    bool accept_pinches) {
     faces_ = F;
     const index_t nf = F.rows();
-    struct half {
-      index_t a, b, face;
-      int corner;
-    };
-    std::vector<half> hs;
-    hs.reserve(static_cast<std::size_t>(3 * nf));
-    for (index_t f = 0; f < nf; ++f)
-      for (int k = 0; k < 3; ++k) {
-        const index_t i = F(f, (k + 1) % 3), j = F(f, (k + 2) % 3);
-        hs.push_back({std::min(i, j), std::max(i, j), f, k});
-      }
-    std::sort(hs.begin(), hs.end(), [](const half& x, const half& y) {
-      return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.face < y.face);
-    });
+    const std::vector<detail::half_edge> hs = detail::sorted_half_edges(F);
     face_edges_.resize(nf, 3);
     edge_faces_.clear();
     std::vector<std::pair<index_t, index_t>> ev;
     for (std::size_t s = 0; s < hs.size();) {
       std::size_t e = s;
-      while (e < hs.size() && hs[e].a == hs[s].a && hs[e].b == hs[s].b) ++e;
+      while (e < hs.size() && hs[e].lo == hs[s].lo && hs[e].hi == hs[s].hi) ++e;
       if (e - s == 1)
         throw invalid_input(input_error::unsupported_topology, hs[s].face,
-                            "mid_edge_flattening: edge (" + std::to_string(hs[s].a) + ", " + std::to_string(hs[s].b) +
+                            "mid_edge_flattening: edge (" + std::to_string(hs[s].lo) + ", " + std::to_string(hs[s].hi) +
                                 ") of face " + std::to_string(hs[s].face) +
                                 " is on a boundary (the mesh has a hole); a closed genus-0 surface is required: fill "
                                 "small holes first (blended_shape_options::close_small_holes, off by default, or "
                                 "geometry/mesh_repair.hpp close_small_holes)");
       if (e - s > 2)
         throw invalid_input(input_error::non_manifold, hs[s].face,
-                            "mid_edge_flattening: edge (" + std::to_string(hs[s].a) + ", " + std::to_string(hs[s].b) +
+                            "mid_edge_flattening: edge (" + std::to_string(hs[s].lo) + ", " + std::to_string(hs[s].hi) +
                                 ") has " + std::to_string(e - s) + " faces; a manifold surface is required");
       const index_t id = static_cast<index_t>(ev.size());
-      ev.emplace_back(hs[s].a, hs[s].b);
+      ev.emplace_back(hs[s].lo, hs[s].hi);
       edge_faces_.push_back({hs[s].face, hs[s + 1].face});
       for (std::size_t t = s; t < e; ++t) face_edges_(hs[t].face, hs[t].corner) = id;
       s = e;

@@ -14,6 +14,7 @@
 
 #include "shapestruct/core/errors.hpp"
 #include "shapestruct/core/types.hpp"
+#include "shapestruct/detail/sorted_half_edges.hpp"
 
 namespace shapestruct {
 
@@ -250,20 +251,7 @@ class planar_triangle_locator {
   void build_walk() {
     const index_t n = tris_.rows();
     neighbours_.setConstant(n, 3, no_index);
-    struct half_edge {
-      index_t lo, hi, t;
-      int corner;
-    };
-    std::vector<half_edge> halves;
-    halves.reserve(static_cast<std::size_t>(3 * n));
-    for (index_t t = 0; t < n; ++t)
-      for (int k = 0; k < 3; ++k) {
-        const index_t i = tris_(t, (k + 1) % 3), j = tris_(t, (k + 2) % 3);
-        halves.push_back({std::min(i, j), std::max(i, j), t, k});
-      }
-    std::sort(halves.begin(), halves.end(), [](const half_edge& x, const half_edge& y) {
-      return x.lo != y.lo ? x.lo < y.lo : (x.hi != y.hi ? x.hi < y.hi : x.t < y.t);
-    });
+    const std::vector<detail::half_edge> halves = detail::sorted_half_edges(tris_);
     // Triangles that may overlap others: degenerate ones, the two of an edge lying on the same side of it (a fold),
     // and inverted ones (their orientation against the majority, once each triangle's corner order is made
     // consistent with its neighbours'). The big triangles are not counted: the walk tests them first, as locate does.
@@ -274,18 +262,18 @@ class planar_triangle_locator {
       std::size_t j = i + 1;
       while (j < halves.size() && halves[j].lo == halves[i].lo && halves[j].hi == halves[i].hi) ++j;
       if (j == i + 2) {
-        const half_edge &x = halves[i], &y = halves[i + 1];
-        neighbours_(x.t, x.corner) = y.t;
-        neighbours_(y.t, y.corner) = x.t;
+        const detail::half_edge &x = halves[i], &y = halves[i + 1];
+        neighbours_(x.face, x.corner) = y.face;
+        neighbours_(y.face, y.corner) = x.face;
         const complex p = pts_[static_cast<std::size_t>(x.lo)], d = pts_[static_cast<std::size_t>(x.hi)] - p;
-        const Scalar side_x = cross(d, pts_[static_cast<std::size_t>(tris_(x.t, x.corner))] - p);
-        const Scalar side_y = cross(d, pts_[static_cast<std::size_t>(tris_(y.t, y.corner))] - p);
+        const Scalar side_x = cross(d, pts_[static_cast<std::size_t>(tris_(x.face, x.corner))] - p);
+        const Scalar side_y = cross(d, pts_[static_cast<std::size_t>(tris_(y.face, y.corner))] - p);
         if (!(side_x * side_y < 0)) {
-          suspect[static_cast<std::size_t>(x.t)] = 1;
-          suspect[static_cast<std::size_t>(y.t)] = 1;
+          suspect[static_cast<std::size_t>(x.face)] = 1;
+          suspect[static_cast<std::size_t>(y.face)] = 1;
         }
       } else if (j > i + 2) {
-        for (std::size_t h = i; h < j; ++h) suspect[static_cast<std::size_t>(halves[h].t)] = 1;
+        for (std::size_t h = i; h < j; ++h) suspect[static_cast<std::size_t>(halves[h].face)] = 1;
       }
       i = j;
     }
