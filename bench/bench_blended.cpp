@@ -1,5 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Micro-benchmarks of the blended-intrinsic-maps kernels on a procedural shape (no data needed).
+#include <complex>
+#include <cstdint>
+#include <vector>
+
 #include <benchmark/benchmark.h>
 
 #include "blended/blended_fixtures.hpp"
@@ -28,6 +32,37 @@ static void BM_blended_locate(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_blended_locate);
+
+// Blending's access pattern: the images of neighbouring vertices under one map, located one after the other,
+// through the tree (locate) or by a walk from the previous answer (locate with a hint). The same answers.
+static std::vector<std::complex<double>> moved_vertex_images(const mid_edge_flattening<double>& fl, index_t n) {
+  std::vector<std::complex<double>> q(static_cast<std::size_t>(n));
+  const std::complex<double> motion = std::polar(1.02, 0.01);
+  for (index_t v = 0; v < n; ++v) q[static_cast<std::size_t>(v)] = motion * fl.coordinate(v);
+  return q;
+}
+
+static void BM_blended_locate_sequence_tree(benchmark::State& state) {
+  const auto m = test::armed_sphere(5);
+  const mid_edge_flattening<double> fl(m.V, m.F);
+  const auto queries = moved_vertex_images(fl, m.V.rows());
+  for (auto _ : state)
+    for (const auto& z : queries) benchmark::DoNotOptimize(fl.locate(z).face);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(queries.size()));
+}
+BENCHMARK(BM_blended_locate_sequence_tree)->Unit(benchmark::kMillisecond);
+
+static void BM_blended_locate_sequence_walk(benchmark::State& state) {
+  const auto m = test::armed_sphere(5);
+  const mid_edge_flattening<double> fl(m.V, m.F);
+  const auto queries = moved_vertex_images(fl, m.V.rows());
+  for (auto _ : state) {
+    index_t hint = no_index;
+    for (const auto& z : queries) benchmark::DoNotOptimize(fl.locate(z, hint).face);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(queries.size()));
+}
+BENCHMARK(BM_blended_locate_sequence_walk)->Unit(benchmark::kMillisecond);
 
 static void BM_blended_prepare(benchmark::State& state) {
   const auto m = test::armed_sphere(5);
