@@ -157,7 +157,7 @@ class zoomout_refiner {
     const row_major Sa = rows_of(Pa, fa.indices, K), Sb = rows_of(Pb, fb.indices, K);
     const row_major Pbf = Pb.leftCols(K).template cast<float>();
     const auto images = [&](const row_major& queries, index_t k, const std::vector<std::vector<index_t>>& seeds) {
-      const row_major Eb = embed(Pbf, C, k);
+      const row_major Eb = embed(Pbf, C, k, workers);
       if (exhaustive) return nearest_rows(queries.leftCols(k), Eb, workers);
       return nearest_among(queries.leftCols(k), Eb, near, seeds, workers);
     };
@@ -167,7 +167,7 @@ class zoomout_refiner {
       return seeds;
     };
     for (index_t k = k0; k < K;) {
-      const auto coarse = exhaustive ? std::vector<index_t>{} : nearest_rows(Sa.leftCols(k), embed(Sb, C, k), workers);
+      const auto coarse = exhaustive ? std::vector<index_t>{} : nearest_rows(Sa.leftCols(k), embed(Sb, C, k, workers), workers);
       const auto image = images(Sa, k, own_images(coarse));
       const index_t next = std::min(K, k + std::max<index_t>(options_.step, 1));
       matrix_x<Scalar> target(Sa.rows(), next);
@@ -183,7 +183,7 @@ class zoomout_refiner {
     const row_major Qa = Pa.leftCols(K).template cast<float>();
     std::vector<std::vector<index_t>> seeds;
     if (!exhaustive) {
-      const auto coarse = nearest_rows(Sa, embed(Sb, C, K), workers);
+      const auto coarse = nearest_rows(Sa, embed(Sb, C, K, workers), workers);
       matrix_x3<Scalar> sample_points(static_cast<index_t>(fa.indices.size()), 3);
       for (std::size_t i = 0; i < fa.indices.size(); ++i) sample_points.row(static_cast<index_t>(i)) = a.V.row(fa.indices[i]);
       const knn_index<Scalar, 3> source_samples(sample_points);
@@ -223,10 +223,19 @@ class zoomout_refiner {
     return out;
   }
 
-  /// Target embedding Phi_b C^T restricted to the first k eigenfunctions.
+  /// Target embedding Phi_b C^T restricted to the first k eigenfunctions, by blocks of rows on `workers` threads.
+  /// Written in place (noalias), each block's product is the whole product's to the last bit, so the result does
+  /// not depend on the worker count.
   template <class Scalar>
-  static row_major embed(const row_major& Pb, const matrix_x<Scalar>& C, index_t k) {
-    return Pb.leftCols(k) * C.topLeftCorner(k, k).transpose().template cast<float>();
+  static row_major embed(const row_major& Pb, const matrix_x<Scalar>& C, index_t k, unsigned workers) {
+    const Eigen::MatrixXf Ct = C.topLeftCorner(k, k).transpose().template cast<float>();
+    row_major out(Pb.rows(), k);
+    constexpr index_t block = 1024;
+    detail::parallel_for((Pb.rows() + block - 1) / block, workers, [&](index_t bi) {
+      const index_t begin = bi * block, count = std::min(block, static_cast<index_t>(Pb.rows()) - begin);
+      out.middleRows(begin, count).noalias() = Pb.middleRows(begin, count).leftCols(k) * Ct;
+    });
+    return out;
   }
 
   /// For every row of Q, the index of the nearest row of D (ties: lower index), by blocks of Q on `workers`
