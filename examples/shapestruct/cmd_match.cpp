@@ -181,26 +181,37 @@ int run_match(const match_options& m) {
   zoomout.initial_size = std::min(zoomout.initial_size, zoomout.final_size);
   const blended_matcher<> matcher(o, cands, {}, {}, zoomout_refiner(zoomout));
 
-  const auto read_noting = [](const std::string& path) {
-    auto file = read_mesh(std::filesystem::path(path));
+  const int threads = static_cast<int>(detail::resolve_threads(o.threads, "match"));
+  const auto launch = threads > 1 ? std::launch::async : std::launch::deferred;
+  // Both files are read side by side; notes and errors are reported in argument order.
+  auto file_a = std::async(launch, [&] { return read_mesh(std::filesystem::path(pos[0])); });
+  std::optional<mesh_file<double>> file_b;
+  std::exception_ptr b_unreadable;
+  try {
+    file_b = read_mesh(std::filesystem::path(pos[1]));
+  } catch (...) {
+    b_unreadable = std::current_exception();
+  }
+  const auto note_short_faces = [](const mesh_file<double>& file, const std::string& path) {
     if (file.short_faces > 0) std::fprintf(stderr, "match: %s\n", file.short_faces_note(path).c_str());
-    return std::move(file.mesh);
   };
-  const auto A = read_noting(pos[0]);
-  const auto B = read_noting(pos[1]);
+  auto read_a = file_a.get();
+  note_short_faces(read_a, pos[0]);
+  if (b_unreadable) std::rethrow_exception(b_unreadable);
+  note_short_faces(*file_b, pos[1]);
+  const auto A = std::move(read_a.mesh);
+  const auto B = std::move(file_b->mesh);
   if (verbose)
     std::fprintf(stderr, "read %s (%ld vertices) and %s (%ld vertices)\nmemory: %s\n", pos[0].c_str(),
                  long(A.V.rows()), pos[1].c_str(), long(B.V.rows()), huge_pages_status().c_str());
   const auto t0 = std::chrono::steady_clock::now();
-  // As blended_matcher::match(a, b) does: side by side, each with half the threads; here each failure is
+  // As blended_matcher::match(a, b) does: side by side, each allowed all the threads; here each failure is
   // explained in the tool's terms first.
-  const int threads = static_cast<int>(detail::resolve_threads(o.threads, "match"));
-  auto future_a = std::async(threads > 1 ? std::launch::async : std::launch::deferred,
-                             [&] { return prepare_or_explain(matcher, A, pos[0], m, std::max(1, threads / 2)); });
+  auto future_a = std::async(launch, [&] { return prepare_or_explain(matcher, A, pos[0], m, threads); });
   std::optional<blended_shape<double>> prepared_b;
   std::exception_ptr b_failed;
   try {
-    prepared_b = prepare_or_explain(matcher, B, pos[1], m, std::max(1, threads - threads / 2));
+    prepared_b = prepare_or_explain(matcher, B, pos[1], m, threads);
   } catch (...) {
     b_failed = std::current_exception();
   }

@@ -206,15 +206,15 @@ class blended_matcher {
 
   /// Matches the vertices of `a` to the surface of `b` (PairwiseMatcher). Prepares both shapes first.
   /// \throws invalid_input as blended_shape (topology, repairs, parameters).
-  /// With two or more threads the two shapes are prepared side by side, each with half of them: their stages
-  /// are only partly parallel, so this is faster than one after the other (the results do not depend on it).
+  /// With two or more threads the two shapes are prepared side by side, each allowed all of them: their stages
+  /// are only partly parallel, and the shape that finishes first leaves its cores to the other's parallel parts
+  /// (the results do not depend on it).
   template <SurfaceMesh Src, SurfaceMesh Tgt>
   [[nodiscard]] blended_match_result<double> match(const Src& a, const Tgt& b) const {
     const auto t0 = clock::now();
     const int threads = static_cast<int>(detail::resolve_threads(options_.threads, "blended intrinsic maps"));
     auto oa = options_.shape, ob = options_.shape;
-    oa.threads = std::max(1, threads / 2);
-    ob.threads = std::max(1, threads - threads / 2);
+    oa.threads = ob.threads = threads;
     auto future_a =
         std::async(threads > 1 ? std::launch::async : std::launch::deferred, [&] { return make_blended_shape(a, oa); });
     std::optional<blended_shape<double>> prepared_b;
