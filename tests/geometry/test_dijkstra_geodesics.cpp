@@ -100,6 +100,44 @@ TEST_CASE("distance_table: columns equal single-source runs, identical for 1, 2 
   CHECK(T1(src[3], 7) == doctest::Approx(T1(src[7], 3)).epsilon(1e-12));
 }
 
+TEST_CASE("full runs through the bucket queue equal the heap's runs to the last bit") {
+  // update_distances from +infinity always runs the heap; distances_from and distance_table use the buckets here.
+  const auto heap_run = [](const dijkstra_geodesics<double>& geo, const std::vector<index_t>& sources) {
+    Eigen::VectorXd d = Eigen::VectorXd::Constant(geo.num_vertices(), std::numeric_limits<double>::infinity());
+    typename dijkstra_geodesics<double>::workspace ws;
+    for (const index_t s : sources) geo.update_distances(s, d, ws);
+    return d;
+  };
+  std::mt19937_64 rng(777);
+  for (int trial = 0; trial < 4; ++trial) {
+    const auto m = test::jittered_icosphere(3, rng(), 0.3);
+    const dijkstra_geodesics<double> geo(m.V, m.F);
+    REQUIRE(geo.uses_buckets());
+    std::uniform_int_distribution<index_t> pick(0, m.V.rows() - 1);
+    std::vector<index_t> sources;
+    for (int k = 0; k < 16; ++k) sources.push_back(pick(rng));
+    const auto table = geo.distance_table(sources, 2);
+    for (std::size_t k = 0; k < sources.size(); ++k) CHECK(table.col(index_t(k)) == heap_run(geo, {sources[k]}));
+    const std::vector<index_t> several(sources.begin(), sources.begin() + 3);
+    CHECK(geo.distances_from(several) == heap_run(geo, several));
+  }
+}
+
+TEST_CASE("the heap serves meshes whose shortest edge is tiny against their size, float and graphs alone") {
+  auto m = test::grid_mesh(30, 30, 1.0);
+  const dijkstra_geodesics<double> even(m.V, m.F);
+  CHECK(even.uses_buckets());
+  CHECK_FALSE(dijkstra_geodesics<double>(edge_graph<double>(m.V, m.F)).uses_buckets());
+  const Eigen::MatrixX3f Vf = m.V.cast<float>();
+  CHECK_FALSE(dijkstra_geodesics<float>(Vf, m.F).uses_buckets());
+  // One vertex moved next to its neighbour: the shortest edge is 1e-6 of the grid's size.
+  m.V.row(1) = m.V.row(0) + Eigen::RowVector3d(1e-6 * 30, 0, 0);
+  const dijkstra_geodesics<double> skewed(m.V, m.F);
+  CHECK_FALSE(skewed.uses_buckets());
+  const std::vector<index_t> source = {17};
+  CHECK((skewed.distances_from(17) - bellman_ford(m, source)).cwiseAbs().maxCoeff() < 1e-12);
+}
+
 TEST_CASE("update_distances lowers an existing field to the multi-source distance") {
   const auto m = test::jittered_icosphere(2, 9);
   const dijkstra_geodesics<double> geo(m.V, m.F);
