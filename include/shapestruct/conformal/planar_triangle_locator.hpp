@@ -85,30 +85,13 @@ class planar_triangle_locator {
   /// that no other triangle can hold q. Elsewhere (outside the image, within a tolerance band of an edge, around a
   /// fold-over, after max_walk_steps) it falls back to locate(q), so it returns what locate returns.
   [[nodiscard]] hit locate_from(complex q, index_t& hint) const {
+    hit h;
     if (hint >= 0 && hint < tris_.rows() && std::isfinite(q.real()) && std::isfinite(q.imag())) {
       // locate() tries the big triangles first, and they may overlap others: it answers with them, so does this.
-      for (index_t t : big_) {
-        if (!boxes_[static_cast<std::size_t>(t)].contains(q)) continue;
-        hit h = test(t, q);
-        if (h.distance == Scalar(0)) {
-          hint = t;
-          return h;
-        }
-      }
-      index_t t = hint;
-      for (int step = 0; step < max_walk_steps && t != no_index && walkable(t); ++step) {
-        Scalar l[3];
-        barycentric(t, q, l);
-        const int k = static_cast<int>(std::min_element(l, l + 3) - l);
-        if (l[k] >= walk_margin) {
-          hint = t;
-          return test(t, q);
-        }
-        if (l[k] >= -walk_margin) break;  // on or near an edge: the tree decides, as it always has
-        t = neighbours_(t, k);
-      }
+      if (!in_big_triangle(q, h)) h = walk_or_search(q, hint);
+    } else {
+      h = locate(q);
     }
-    hit h = locate(q);
     hint = h.triangle;
     return h;
   }
@@ -125,11 +108,42 @@ class planar_triangle_locator {
       q = complex(far_value(), far_value());
     }
     // Phase 1: containment. Only boxes that contain q are opened, so an inside point costs O(depth + overlap).
+    if (in_big_triangle(q, best)) return best;
+    return search_after_big(q);
+  }
+
+ private:
+  /// Whether q lies in one of the big triangles (tried first: their boxes would make every tree node large), the
+  /// first such in `out`.
+  bool in_big_triangle(complex q, hit& out) const {
     for (index_t t : big_) {
       if (!boxes_[static_cast<std::size_t>(t)].contains(q)) continue;
       hit h = test(t, q);
-      if (h.distance == Scalar(0)) return h;
+      if (h.distance == Scalar(0)) {
+        out = h;
+        return true;
+      }
     }
+    return false;
+  }
+
+  /// locate_from once the big triangles are ruled out: the walk from `hint`, else the tree.
+  hit walk_or_search(complex q, index_t hint) const {
+    index_t t = hint;
+    for (int step = 0; step < max_walk_steps && t != no_index && walkable(t); ++step) {
+      Scalar l[3];
+      barycentric(t, q, l);
+      const int k = static_cast<int>(std::min_element(l, l + 3) - l);
+      if (l[k] >= walk_margin) return inside(t, l);
+      if (l[k] >= -walk_margin) break;  // on or near an edge: the tree decides, as it always has
+      t = neighbours_(t, k);
+    }
+    return search_after_big(q);
+  }
+
+  /// locate() for a finite q in none of the big triangles: containment through the tree, then the nearest triangle.
+  hit search_after_big(complex q) const {
+    hit best;
     {
       std::array<std::size_t, 128> stack{};
       std::size_t top = 0;
@@ -187,7 +201,6 @@ class planar_triangle_locator {
     return best;
   }
 
- private:
   static constexpr std::size_t leaf_size = 4;
 
   struct box {
@@ -236,7 +249,17 @@ class planar_triangle_locator {
     return !(std::abs(area) > Scalar(1e-14) * scale && scale > Scalar(1e-16) * reach);
   }
 
-  /// Barycentric coordinates of q in triangle t (not degenerate), computed exactly as test() does.
+  /// The hit at barycentric coordinates l (at least -1e-10 each) of triangle t: clamped to 0 and renormalised.
+  static hit inside(index_t t, const Scalar* l) {
+    hit h;
+    h.triangle = t;
+    h.bary << std::max(l[0], Scalar(0)), std::max(l[1], Scalar(0)), std::max(l[2], Scalar(0));
+    h.bary /= h.bary.sum();
+    h.distance = 0;
+    return h;
+  }
+
+  /// Barycentric coordinates of q in triangle t (not degenerate), as test() computes them.
   void barycentric(index_t t, complex q, Scalar* l) const {
     const complex p0 = pts_[static_cast<std::size_t>(tris_(t, 0))], p1 = pts_[static_cast<std::size_t>(tris_(t, 1))],
                   p2 = pts_[static_cast<std::size_t>(tris_(t, 2))];
@@ -397,15 +420,10 @@ class planar_triangle_locator {
     const Scalar area = cross(p1 - p0, p2 - p0);
     const Scalar scale = std::norm(p1 - p0) + std::norm(p2 - p0) + std::norm(p2 - p1);
     if (std::abs(area) > Scalar(1e-14) * scale && scale > Scalar(0)) {
-      const Scalar l0 = cross(p1 - q, p2 - q) / area, l1 = cross(p2 - q, p0 - q) / area;
-      const Scalar l2 = Scalar(1) - l0 - l1;
+      Scalar l[3];
+      barycentric(t, q, l);
       const Scalar tol = Scalar(-1e-10);
-      if (l0 >= tol && l1 >= tol && l2 >= tol) {
-        h.bary << std::max(l0, Scalar(0)), std::max(l1, Scalar(0)), std::max(l2, Scalar(0));
-        h.bary /= h.bary.sum();
-        h.distance = 0;
-        return h;
-      }
+      if (l[0] >= tol && l[1] >= tol && l[2] >= tol) return inside(t, l);
     }
     // Outside (or degenerate): closest point on the three edges.
     const complex P[3] = {p0, p1, p2};
