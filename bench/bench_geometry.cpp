@@ -102,6 +102,15 @@ void BM_geometry_dijkstra_single(benchmark::State& state) {
 }
 BENCHMARK(BM_geometry_dijkstra_single)->Apply(sizes)->Complexity();
 
+/// The same run through the heap: a graph built without positions never takes the bucket queue.
+void BM_geometry_dijkstra_single_heap(benchmark::State& state) {
+  const auto& m = torus(state.range(0));
+  const dijkstra_geodesics<double> geo(make_edge_graph(m.V, m.F));
+  for (auto _ : state) benchmark::DoNotOptimize(geo.distances_from(0));
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_geometry_dijkstra_single_heap)->Apply(sizes)->Complexity();
+
 void BM_geometry_dijkstra_early_exit(benchmark::State& state) {
   const auto& m = torus(state.range(0));
   const dijkstra_geodesics<double> geo(m.V, m.F);
