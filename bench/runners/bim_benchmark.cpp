@@ -20,17 +20,15 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <exception>
 #include <filesystem>
 #include <fstream>
-#include <future>
 #include <iostream>
 #include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "shapestruct/blended/blended_matcher.hpp"
+#include "shapestruct/detail/side_by_side.hpp"
 #include "shapestruct/eval/error_curve.hpp"
 #include "shapestruct/eval/geodesic_error.hpp"
 #include "shapestruct/io/bim_benchmark_files.hpp"
@@ -218,19 +216,11 @@ static int run(int argc, char** argv) {
         }
       };
       // Side by side, as `shapestruct match` and blended_matcher::match(a, b) prepare them; the source's error first.
-      const bool side_by_side = detail::resolve_threads(threads, "run_bim_benchmark") > 1;
-      auto future_a = std::async(side_by_side ? std::launch::async : std::launch::deferred,
-                                 [&] { return prepare(A, pr.source); });
-      std::optional<blended_shape<double>> prepared_b;
-      std::exception_ptr b_failed;
-      try {
-        prepared_b = prepare(B, pr.target);
-      } catch (...) {
-        b_failed = std::current_exception();
-      }
-      const auto sa = future_a.get();
-      if (b_failed) std::rethrow_exception(b_failed);
-      const auto& sb = *prepared_b;
+      const auto shapes = detail::side_by_side(detail::resolve_threads(threads, "run_bim_benchmark") > 1,
+                                               [&] { return prepare(A, pr.source); },
+                                               [&] { return prepare(B, pr.target); });
+      const auto& sa = shapes.first;
+      const auto& sb = shapes.second;
       const double t_prep = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       const auto r = matcher.match(sa, sb);
       const double t_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

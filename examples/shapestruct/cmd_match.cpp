@@ -2,10 +2,7 @@
 // shapestruct match: blended intrinsic maps between two closed genus-0 meshes.
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <fstream>
-#include <future>
-#include <optional>
 #include <utility>
 #include <iostream>
 #include <memory>
@@ -16,6 +13,7 @@
 #include "huge_pages.hpp"
 #include "option_checks.hpp"
 #include "shapestruct/blended/blended_matcher.hpp"
+#include "shapestruct/detail/side_by_side.hpp"
 #include "shapestruct/io/read_mesh.hpp"
 #include "shapestruct/knn/knn_index.hpp"
 #include "shapestruct/io/vertex_map_file.hpp"
@@ -182,42 +180,32 @@ int run_match(const match_options& m) {
   const blended_matcher<> matcher(o, cands, {}, {}, zoomout_refiner(zoomout));
 
   const int threads = static_cast<int>(detail::resolve_threads(o.threads, "match"));
-  const auto launch = threads > 1 ? std::launch::async : std::launch::deferred;
   // Both files are read side by side; notes and errors are reported in argument order.
-  auto file_a = std::async(launch, [&] { return read_mesh(std::filesystem::path(pos[0])); });
-  std::optional<mesh_file<double>> file_b;
-  std::exception_ptr b_unreadable;
-  try {
-    file_b = read_mesh(std::filesystem::path(pos[1]));
-  } catch (...) {
-    b_unreadable = std::current_exception();
-  }
   const auto note_short_faces = [](const mesh_file<double>& file, const std::string& path) {
     if (file.short_faces > 0) std::fprintf(stderr, "match: %s\n", file.short_faces_note(path).c_str());
   };
-  auto read_a = file_a.get();
-  note_short_faces(read_a, pos[0]);
-  if (b_unreadable) std::rethrow_exception(b_unreadable);
-  note_short_faces(*file_b, pos[1]);
-  const auto A = std::move(read_a.mesh);
-  const auto B = std::move(file_b->mesh);
+  auto files = detail::side_by_side(
+      threads > 1,
+      [&] {
+        auto file = read_mesh(std::filesystem::path(pos[0]));
+        note_short_faces(file, pos[0]);
+        return file;
+      },
+      [&] { return read_mesh(std::filesystem::path(pos[1])); });
+  note_short_faces(files.second, pos[1]);
+  const auto A = std::move(files.first.mesh);
+  const auto B = std::move(files.second.mesh);
   if (verbose)
     std::fprintf(stderr, "read %s (%ld vertices) and %s (%ld vertices)\nmemory: %s\n", pos[0].c_str(),
                  long(A.V.rows()), pos[1].c_str(), long(B.V.rows()), huge_pages_status().c_str());
   const auto t0 = std::chrono::steady_clock::now();
   // As blended_matcher::match(a, b) does: side by side, each allowed all the threads; here each failure is
   // explained in the tool's terms first.
-  auto future_a = std::async(launch, [&] { return prepare_or_explain(matcher, A, pos[0], m, threads); });
-  std::optional<blended_shape<double>> prepared_b;
-  std::exception_ptr b_failed;
-  try {
-    prepared_b = prepare_or_explain(matcher, B, pos[1], m, threads);
-  } catch (...) {
-    b_failed = std::current_exception();
-  }
-  const auto sa = future_a.get();  // SRC's error first when both fail
-  if (b_failed) std::rethrow_exception(b_failed);
-  const auto& sb = *prepared_b;
+  const auto shapes =
+      detail::side_by_side(threads > 1, [&] { return prepare_or_explain(matcher, A, pos[0], m, threads); },
+                           [&] { return prepare_or_explain(matcher, B, pos[1], m, threads); });
+  const auto& sa = shapes.first;
+  const auto& sb = shapes.second;
   for (const auto& [shape, path] : {std::pair{&sa, pos[0]}, std::pair{&sb, pos[1]}})
     if (shape->repairs().any())
       std::fprintf(stderr, "match: repaired %s: %s\n", path.c_str(), shape->repairs().to_string().c_str());

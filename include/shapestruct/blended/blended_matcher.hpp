@@ -5,12 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <functional>
-#include <future>
 #include <limits>
 #include <numeric>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +20,7 @@
 #include "shapestruct/blended/blended_shape.hpp"
 #include "shapestruct/blended/sample_map_measures.hpp"
 #include "shapestruct/detail/parallel_for.hpp"
+#include "shapestruct/detail/side_by_side.hpp"
 #include "shapestruct/blended/geodesic_consistency.hpp"
 #include "shapestruct/blended/triplet_candidates.hpp"
 #include "shapestruct/core/concepts/surface_mesh.hpp"
@@ -215,19 +213,10 @@ class blended_matcher {
     const int threads = static_cast<int>(detail::resolve_threads(options_.threads, "blended intrinsic maps"));
     auto oa = options_.shape, ob = options_.shape;
     oa.threads = ob.threads = threads;
-    auto future_a =
-        std::async(threads > 1 ? std::launch::async : std::launch::deferred, [&] { return make_blended_shape(a, oa); });
-    std::optional<blended_shape<double>> prepared_b;
-    std::exception_ptr b_failed;
-    try {
-      prepared_b = make_blended_shape(b, ob);
-    } catch (...) {
-      b_failed = std::current_exception();
-    }
-    const auto sa = future_a.get();  // the source's error first when both fail
-    if (b_failed) std::rethrow_exception(b_failed);
-    const auto& sb = *prepared_b;
-    auto r = match(sa, sb);
+    // The source's error first when both fail.
+    const auto shapes = detail::side_by_side(threads > 1, [&] { return make_blended_shape(a, oa); },
+                                             [&] { return make_blended_shape(b, ob); });
+    auto r = match(shapes.first, shapes.second);
     r.timings.insert(r.timings.begin(), {"preprocess", seconds(t0)});
     return r;
   }

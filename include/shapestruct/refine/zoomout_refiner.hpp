@@ -167,7 +167,8 @@ class zoomout_refiner {
       return seeds;
     };
     for (index_t k = k0; k < K;) {
-      const auto coarse = exhaustive ? std::vector<index_t>{} : nearest_rows(Sa.leftCols(k), embed(Sb, C, k, workers), workers);
+      const auto coarse =
+          exhaustive ? std::vector<index_t>{} : nearest_rows(Sa.leftCols(k), embed(Sb, C, k, workers), workers);
       const auto image = images(Sa, k, own_images(coarse));
       const index_t next = std::min(K, k + std::max<index_t>(options_.step, 1));
       matrix_x<Scalar> target(Sa.rows(), next);
