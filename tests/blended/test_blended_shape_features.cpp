@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
-// blended_shape completes too few AGD maxima to blended_shape_options::min_features feature points.
+// blended_shape's feature points: too few AGD maxima completed to blended_shape_options::min_features, and
+// maxima below min_feature_persistence dropped.
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <span>
 #include <vector>
@@ -73,6 +75,40 @@ TEST_CASE("blended_shape keeps enough AGD maxima as they are") {
   const blended_shape<double> s(m.V, m.F, small_options());
   CHECK(s.features().size() >= 4);
   CHECK(static_cast<std::size_t>(s.num_agd_maxima()) == s.features().size());
+}
+
+TEST_CASE("blended_shape keeps the AGD maxima of at least min_feature_persistence, in AGD order") {
+  // Ripples on a five-armed body: many small AGD maxima beside the five arm tips.
+  auto m = test::armed_sphere(4, 5);
+  for (index_t v = 0; v < m.V.rows(); ++v) {
+    const Eigen::RowVector3d p = m.V.row(v);
+    m.V.row(v) *= 1 + 0.03 * std::sin(9 * p.x()) * std::sin(9 * p.y()) * std::sin(9 * p.z());
+  }
+  blended_shape_options all = small_options();
+  all.feature_radius = 0.03;
+  all.max_features = 1000;
+  all.min_features = 0;
+  const blended_shape<double> every(m.V, m.F, all);
+  const auto persistence = maximum_persistence<double>(every.geodesics().graph(), every.agd(), every.features());
+  std::vector<double> sorted = persistence;
+  std::sort(sorted.begin(), sorted.end());
+  REQUIRE(sorted.size() >= 8);
+  CHECK(sorted.front() < 0.25 * sorted.back());  // ripples and arm tips: a real spread to cut
+  const double threshold = sorted[sorted.size() / 2];
+  std::vector<index_t> expected;
+  for (std::size_t i = 0; i < persistence.size(); ++i)
+    if (persistence[i] >= threshold) expected.push_back(every.features()[i]);
+
+  blended_shape_options persistent = all;
+  persistent.min_feature_persistence = threshold;
+  const blended_shape<double> kept(m.V, m.F, persistent);
+  CHECK(kept.features() == expected);
+  CHECK(static_cast<std::size_t>(kept.num_agd_maxima()) == expected.size());
+
+  persistent.min_feature_persistence = -0.1;
+  CHECK_THROWS_AS((void)blended_shape<double>(m.V, m.F, persistent), invalid_input);
+  persistent.min_feature_persistence = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_AS((void)blended_shape<double>(m.V, m.F, persistent), invalid_input);
 }
 
 TEST_CASE("blended_matcher matches through the completed features, not the fallback of too few") {

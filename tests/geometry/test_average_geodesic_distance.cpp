@@ -2,7 +2,10 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <limits>
+#include <numeric>
+#include <random>
 #include <vector>
 
 #include "geometry/geometry_test_util.hpp"
@@ -76,6 +79,99 @@ TEST_CASE("agd_local_maxima: a plateau gives one maximum, non-finite values are 
   const auto m = agd_local_maxima(grid.V, grid.F, f, 100.0);
   REQUIRE(m.size() == 1);
   CHECK(m[0] == 9);
+}
+
+namespace {
+// Brute force: m's persistence is f(m) minus the highest level t at which the superlevel set {f >= t} (in the
+// tie-broken order) joins m to a vertex ranked above it; the top vertex of a component gets f(m) - min f there.
+double brute_force_persistence(const edge_graph<double>& g, const Eigen::VectorXd& f, index_t m) {
+  const index_t n = g.num_vertices();
+  auto above = [&](index_t u, index_t v) { return f[u] > f[v] || (f[u] == f[v] && u < v); };
+  std::vector<index_t> levels(static_cast<std::size_t>(n));
+  std::iota(levels.begin(), levels.end(), index_t{0});
+  std::sort(levels.begin(), levels.end(), above);
+  double lowest = f[m];
+  for (const index_t t : levels) {  // the level set of every vertex ranked at or above t, highest t first
+    if (above(m, t) == false && t != m) continue;
+    std::vector<char> seen(static_cast<std::size_t>(n), 0);
+    std::vector<index_t> stack{m};
+    seen[static_cast<std::size_t>(m)] = 1;
+    bool joined = false;
+    while (!stack.empty()) {
+      const index_t v = stack.back();
+      stack.pop_back();
+      lowest = std::min(lowest, f[v]);
+      if (above(v, m)) joined = true;
+      for (index_t k = g.offsets[static_cast<std::size_t>(v)]; k < g.offsets[static_cast<std::size_t>(v + 1)]; ++k) {
+        const index_t u = g.neighbours[static_cast<std::size_t>(k)];
+        if (!seen[static_cast<std::size_t>(u)] && (u == t || above(u, t))) {
+          seen[static_cast<std::size_t>(u)] = 1;
+          stack.push_back(u);
+        }
+      }
+    }
+    if (joined) return f[m] - f[t];
+  }
+  return f[m] - lowest;
+}
+}  // namespace
+
+TEST_CASE("maximum_persistence: the dip between two ridges, and a vertex that is no maximum") {
+  // Columns of a 5 x 2 grid carry 0, 3, 1, 2, 0 (both rows alike, the upper row 0.01 lower): the ridge at x = 1
+  // is the top (persistence 3 - 0), the one at x = 3 meets it at the dip x = 2 (2 - 1).
+  const auto grid = test::grid_mesh(4, 1);
+  const double column[5] = {0, 3, 1, 2, 0};
+  Eigen::VectorXd f(10);
+  for (int i = 0; i < 5; ++i) {
+    f[i] = column[i];
+    f[5 + i] = column[i] - 0.01;
+  }
+  const edge_graph<double> g(grid.V, grid.F);
+  const std::vector<index_t> asked{1, 3, 2};
+  const auto p = maximum_persistence<double>(g, f, asked);
+  REQUIRE(p.size() == 3);
+  CHECK(p[0] == doctest::Approx(3.01));  // down to the lowest vertex, 5 (-0.01)
+  CHECK(p[1] == doctest::Approx(1.0));
+  CHECK(p[2] == 0.0);  // x = 2 is a dip, not a maximum
+  CHECK(agd_local_maxima(grid.V, grid.F, f, 0.5) == std::vector<index_t>{1, 3});
+}
+
+TEST_CASE("maximum_persistence equals the brute-force superlevel-set definition on random functions") {
+  const auto grid = test::grid_mesh(7, 6);
+  const edge_graph<double> g(grid.V, grid.F);
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> level(0, 9);  // few levels: many ties, broken by index
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::VectorXd f(grid.V.rows());
+    for (index_t v = 0; v < f.size(); ++v) f[v] = level(rng);
+    std::vector<index_t> all(static_cast<std::size_t>(f.size()));
+    std::iota(all.begin(), all.end(), index_t{0});
+    const auto p = maximum_persistence<double>(g, f, all);
+    for (const index_t v : all) CHECK(p[static_cast<std::size_t>(v)] == brute_force_persistence(g, f, v));
+  }
+}
+
+TEST_CASE("maximum_persistence: non-finite values are no region, two components each keep their top") {
+  auto two = test::grid_mesh(2, 1);
+  const index_t n = two.V.rows();
+  two.V.conservativeResize(2 * n, 3);
+  two.V.bottomRows(n) = two.V.topRows(n).rowwise() + Eigen::RowVector3d(10, 0, 0);
+  const index_t nf = two.F.rows();
+  two.F.conservativeResize(2 * nf, 3);
+  two.F.bottomRows(nf) = two.F.topRows(nf).array() + n;
+  Eigen::VectorXd f(2 * n);
+  f << 1, 5, 2, 0, 1, 1, 4, 3, 9, 3, 3, 3;
+  f[4] = std::numeric_limits<double>::quiet_NaN();
+  const edge_graph<double> g(two.V, two.F);
+  const std::vector<index_t> asked{1, 8, 4};
+  const auto p = maximum_persistence<double>(g, f, asked);
+  CHECK(p[0] == 5.0);  // the first piece's top: down to its lowest vertex (0)
+  CHECK(p[1] == 6.0);  // the second piece's top: down to 3, not to the first piece's 0
+  CHECK(p[2] == 0.0);  // NaN
+  test::expect_invalid([&] { (void)maximum_persistence<double>(g, Eigen::VectorXd(Eigen::VectorXd::Ones(3)), asked); },
+                       input_error::size_mismatch);
+  const std::vector<index_t> outside{12};
+  test::expect_invalid([&] { (void)maximum_persistence<double>(g, f, outside); }, input_error::bad_parameter, 12);
 }
 
 TEST_CASE("AGD: one test per invalid_input reason") {

@@ -43,6 +43,10 @@ struct blended_shape_options {
   /// 0.1 on all five benchmark lists: better on humans, SHREC'07 and TOSCA, a little worse on SCAPE and animals
   /// (the measurements: docs/blended_maps.md).
   double feature_radius = 0.15;
+  /// Least AGD persistence of a feature, in units of sqrt(area) (maximum_persistence: how far the AGD falls from
+  /// the maximum before it meets higher ground). An extremity's tip stands well clear of the body; a bump on an
+  /// extremity does not, however far it lies from the tip. 0 = every maximum, as in the chapter.
+  double min_feature_persistence = 0;
   /// Fewest feature points. A shape whose AGD has fewer maxima (SHREC'07 glasses 43-45: only the two temple tips)
   /// is completed with its most central vertex (least AGD) and then with geodesic farthest points from the
   /// features so far. With fewer than three features on a side no triplet map exists, and three give a single
@@ -115,12 +119,13 @@ class blended_shape {
   blended_shape(const Eigen::Ref<const matrix_x3<Scalar>>& V, const Eigen::Ref<const face_matrix>& F,
                 const blended_shape_options& options = {}) {
     if (options.num_samples < 3 || options.max_features < 3 || !(options.feature_radius > 0) ||
-        options.min_features < 0 ||
+        options.min_features < 0 || !(options.min_feature_persistence >= 0) ||
+        !std::isfinite(options.min_feature_persistence) ||
         options.interpolation_samples < 1 || !(options.cut_clearance >= 0) || !std::isfinite(options.cut_clearance))
       throw invalid_input(input_error::bad_parameter, no_index,
                           "blended_shape: need num_samples >= 3, max_features >= 3, feature_radius > 0, "
-                          "min_features >= 0, interpolation_samples >= 1 and a finite "
-                          "cut_clearance >= 0");
+                          "min_features >= 0, a finite min_feature_persistence >= 0, interpolation_samples >= 1 "
+                          "and a finite cut_clearance >= 0");
     repaired_sphere<Scalar> r = repair_to_sphere<Scalar>(V, F, options.repairs, "blended_shape",
                                                                options.flattening.accept_pinched_vertices);
     triangle_mesh<Scalar> m = std::move(r.mesh);
@@ -153,6 +158,13 @@ class blended_shape {
     // AGD from the same table (samples are even, so equal weights approximate the area integral).
     agd_ = table_.rowwise().mean();
     auto maxima = agd_local_maxima<Scalar>(mesh_.V, mesh_.F, agd_, options.feature_radius);
+    if (options.min_feature_persistence > 0) {
+      const auto persistence = maximum_persistence<Scalar>(geo_->graph(), agd_, maxima);
+      std::vector<index_t> kept;
+      for (std::size_t i = 0; i < maxima.size(); ++i)
+        if (persistence[i] >= Scalar(options.min_feature_persistence)) kept.push_back(maxima[i]);
+      maxima = std::move(kept);
+    }
     if (static_cast<index_t>(maxima.size()) > options.max_features) maxima.resize(static_cast<std::size_t>(options.max_features));
     agd_maxima_ = static_cast<index_t>(maxima.size());
     const index_t wanted = std::min(options.min_features, options.max_features);

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
-// average_geodesic_distance: the AGD function and its local maxima, the feature points of blended intrinsic maps.
+// average_geodesic_distance: the AGD function, its local maxima and their persistence: the feature points of
+// blended intrinsic maps.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,7 @@
 #include "shapestruct/core/triangle_mesh.hpp"
 #include "shapestruct/core/types.hpp"
 #include "shapestruct/core/validate.hpp"
+#include "shapestruct/detail/disjoint_sets.hpp"
 #include "shapestruct/geometry/detail/eigen_forward.hpp"
 #include "shapestruct/geometry/detail/geometry_common.hpp"
 #include "shapestruct/geometry/dijkstra_geodesics.hpp"
@@ -154,6 +157,79 @@ template <class Scalar>
   }
   std::sort(maxima.begin(), maxima.end(), above);
   return maxima;
+}
+
+/// Persistence of local maxima of a per-vertex function over the edge graph: how far the function must fall
+/// from a maximum before its region meets higher ground. Sweeping a level down from the top, every maximum starts a
+/// region of the superlevel set; where two regions meet (at a vertex v), the one whose maximum ranks lower ends,
+/// and its maximum's persistence is f(max) - f(v). The highest maximum of a connected component never ends: it
+/// gets f(max) - min f over the component. On the AGD, an extremity's tip is separated from the body by a deep dip
+/// (0.10-0.65 in units of sqrt(area) on the TOSCA meshes), while bumps on an extremity, such as a dog's eyes and mouth
+/// on its head, rise little above their surroundings (at most 0.07) even when they lie farther apart than any
+/// suppression radius that keeps the paws apart.
+/// \param graph the mesh's edge graph  \param values (#V) the function (non-finite entries are never part of a region)
+/// \param maxima the vertices to report, normally agd_local_maxima's; a vertex that is not a one-ring maximum gets 0
+/// \returns the persistence of each vertex of `maxima`, in order; 0 for a vertex with a non-finite value.
+/// \throws invalid_input (size_mismatch) if values.size() != #V; (bad_parameter) for a vertex out of range.
+/// Complexity O(V log V + E alpha(V)).
+template <class Scalar>
+[[nodiscard]] std::vector<Scalar> maximum_persistence(const edge_graph<Scalar>& graph,
+                                                      const Eigen::Ref<const vector_x<Scalar>>& values,
+                                                      std::span<const index_t> maxima) {
+  const index_t n = graph.num_vertices();
+  if (values.size() != n)
+    throw invalid_input(input_error::size_mismatch, no_index,
+                        "maximum_persistence: values has " + std::to_string(values.size()) +
+                            " entries, the graph has " + std::to_string(n) + " vertices");
+  for (const index_t m : maxima)
+    if (m < 0 || m >= n)
+      throw invalid_input(input_error::bad_parameter, m,
+                          "maximum_persistence: vertex " + std::to_string(m) + " is out of range (the graph has " +
+                              std::to_string(n) + " vertices)");
+  auto finite = [&](index_t v) { return std::isfinite(double(values[v])); };
+  auto above = [&](index_t u, index_t v) { return values[u] > values[v] || (values[u] == values[v] && u < v); };
+  std::vector<index_t> order;
+  order.reserve(static_cast<std::size_t>(n));
+  for (index_t v = 0; v < n; ++v)
+    if (finite(v)) order.push_back(v);
+  std::sort(order.begin(), order.end(), above);
+  constexpr Scalar unset = -1;
+  std::vector<Scalar> persistence(static_cast<std::size_t>(n), unset);
+  std::vector<index_t> peak(static_cast<std::size_t>(n), no_index);  // a region's maximum, kept at its root
+  std::vector<char> swept(static_cast<std::size_t>(n), 0);
+  detail::disjoint_sets regions(n);
+  for (const index_t v : order) {
+    swept[static_cast<std::size_t>(v)] = 1;
+    peak[static_cast<std::size_t>(v)] = v;
+    for (index_t k = graph.offsets[static_cast<std::size_t>(v)]; k < graph.offsets[static_cast<std::size_t>(v + 1)]; ++k) {
+      const index_t u = graph.neighbours[static_cast<std::size_t>(k)];
+      if (!swept[static_cast<std::size_t>(u)]) continue;
+      const index_t ru = regions.find(u), rv = regions.find(v);
+      if (ru == rv) continue;
+      const index_t pu = peak[static_cast<std::size_t>(ru)], pv = peak[static_cast<std::size_t>(rv)];
+      const index_t higher = above(pu, pv) ? pu : pv, lower = higher == pu ? pv : pu;
+      persistence[static_cast<std::size_t>(lower)] = values[lower] - values[v];
+      regions.unite(ru, rv);
+      peak[static_cast<std::size_t>(regions.find(v))] = higher;
+    }
+  }
+  // Peaks that never ended: the depth of their whole component (its lowest vertex was swept last).
+  std::vector<Scalar> lowest(static_cast<std::size_t>(n), std::numeric_limits<Scalar>::infinity());
+  for (const index_t v : order) {
+    auto& low = lowest[static_cast<std::size_t>(regions.find(v))];
+    low = std::min(low, values[v]);
+  }
+  std::vector<Scalar> result;
+  result.reserve(maxima.size());
+  for (const index_t m : maxima) {
+    if (!finite(m)) {
+      result.push_back(Scalar(0));
+      continue;
+    }
+    const Scalar p = persistence[static_cast<std::size_t>(m)];
+    result.push_back(p != unset ? p : values[m] - lowest[static_cast<std::size_t>(regions.find(m))]);
+  }
+  return result;
 }
 
 /// Convenience overload for any dense Eigen arguments (V: #V x 3 of float or double; F: #F x 3 of any integer
