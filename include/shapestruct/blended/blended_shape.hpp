@@ -45,7 +45,9 @@ struct blended_shape_options {
   double feature_radius = 0.15;
   /// Least AGD persistence of a feature, in units of sqrt(area) (maximum_persistence: how far the AGD falls from
   /// the maximum before it meets higher ground). An extremity's tip stands well clear of the body; a bump on an
-  /// extremity does not, however far it lies from the tip. 0 = every maximum, as in the chapter.
+  /// extremity does not, however far it lies from the tip. 0 = every maximum, as in the chapter: small
+  /// extremities (a fish's fins) lie as low as bumps, and every threshold measured lost on SHREC'07
+  /// (docs/blended_maps.md).
   double min_feature_persistence = 0;
   /// Fewest feature points. A shape whose AGD has fewer maxima (SHREC'07 glasses 43-45: only the two temple tips)
   /// is completed with its most central vertex (least AGD) and then with geodesic farthest points from the

@@ -201,8 +201,10 @@ template <class Scalar>
   for (const index_t v : order) {
     swept[static_cast<std::size_t>(v)] = 1;
     peak[static_cast<std::size_t>(v)] = v;
-    for (index_t k = graph.offsets[static_cast<std::size_t>(v)]; k < graph.offsets[static_cast<std::size_t>(v + 1)]; ++k) {
-      const index_t u = graph.neighbours[static_cast<std::size_t>(k)];
+    const auto first = graph.neighbours.begin() + graph.offsets[static_cast<std::size_t>(v)];
+    const auto last = graph.neighbours.begin() + graph.offsets[static_cast<std::size_t>(v + 1)];
+    for (auto it = first; it != last; ++it) {
+      const index_t u = *it;
       if (!swept[static_cast<std::size_t>(u)]) continue;
       const index_t ru = regions.find(u), rv = regions.find(v);
       if (ru == rv) continue;
