@@ -10,8 +10,8 @@
 
 namespace shapestruct::detail {
 
-/// Runs first() on a new thread and second() on this one when `concurrently`, else one after the other, and
-/// returns both results. When both throw, first's exception is rethrown (as if they had run in order), and either
+/// Runs first() on a new thread and second() on this one when `concurrently`, else both on this thread (second()
+/// first, then first()), and returns both results. When both throw, first's exception is rethrown (as if they had run in order), and either
 /// way only after both have finished.
 template <class First, class Second>
 [[nodiscard]] auto side_by_side(bool concurrently, First&& first, Second&& second)
