@@ -262,10 +262,14 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
   fo.on_progress = [&](const std::string& stage, std::size_t d, std::size_t t) { bar.update(stage, d, t); };
   const auto t_fuzzy = steady::now();
   fuzzy_collection_result r;
+  std::size_t preparations = 0;
   if (intrinsic) {
     const auto& f = col.files;
-    intrinsic_aligner aligner(col.records, [&f](index_t k) { return read_mesh(f[std::size_t(k)]).mesh; });
+    intrinsic_alignment_options io;
+    io.cache_bytes = static_cast<std::size_t>(o.cache_memory_mb) << 20;
+    intrinsic_aligner aligner(col.records, [&f](index_t k) { return read_mesh(f[std::size_t(k)]).mesh; }, io);
     r = compute_fuzzy_correspondences(col.records, aligner, fo);
+    preparations = aligner.preparations();
   } else {
     extrinsic_alignment_options eo;
     eo.up_axis = static_cast<int>(o.up);
@@ -273,6 +277,9 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
     r = compute_fuzzy_correspondences(col.records, aligner, fo);
   }
   bar.finish();
+  if (preparations > 0 && !o.quiet && writer)  // says whether --cache-memory is too small
+    std::fprintf(stderr, "fuzzy: %zu shapes prepared %zu times for intrinsic alignment (--cache-memory %lld MB)\n",
+                 col.records.size(), preparations, o.cache_memory_mb);
   const double seconds_fuzzy = since(t_fuzzy);
   auto disconnected = nlohmann::ordered_json::array();
   for (const index_t k : r.disconnected) {
@@ -391,6 +398,12 @@ void add_fuzzy_run_options(CLI::App& app, fuzzy_cli_options& o, const std::strin
                prefix + "keep every pairwise alignment's scores in memory instead of reading\n"
                         "them back from the pair cache each round: a little faster, memory grows\n"
                         "with the pairs; the results are the same");
+  app.add_option("--cache-memory", o.cache_memory_mb,
+                 prefix + "memory for the shapes prepared for intrinsic alignment, kept for\n"
+                          "reuse (about 5 KB per vertex each; default 2048); less prepares\n"
+                          "shapes again more often; the results are the same")
+      ->type_name("MB")
+      ->check(in_range(64LL, 1048576LL));  // 64 MB .. 1 TB
 }
 
 }  // namespace shapestruct::cli

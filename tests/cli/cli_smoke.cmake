@@ -112,6 +112,21 @@ foreach(variant "" "--blended-only" "--fuzzy-min-gain;0.5")
   endif()
   file(REMOVE ${WORK}/creatures_ab.map)
 endforeach()
+# The prepared-shape cache at its smallest: the same files, and a line that says how often shapes were prepared.
+run_cli(0 out fuzzy ${WORK}/creatures -o ${WORK}/creatures_fuzzy_small_cache --mode intrinsic --samples 48 --threads 2
+        --cache-memory 64)
+if(NOT out MATCHES "3 shapes prepared [0-9]+ times for intrinsic alignment \\(--cache-memory 64 MB\\)")
+  message(FATAL_ERROR "fuzzy --cache-memory 64 does not say how often it prepared the shapes:\n${out}")
+endif()
+foreach(f graph.txt fuzzy.bin samples.txt)
+  file(SHA256 ${WORK}/creatures_fuzzy/${f} default_cache_hash)
+  file(SHA256 ${WORK}/creatures_fuzzy_small_cache/${f} small_cache_hash)
+  if(NOT default_cache_hash STREQUAL small_cache_hash)
+    message(FATAL_ERROR "fuzzy --cache-memory 64 wrote another ${f} than the default cache")
+  endif()
+endforeach()
+run_cli_error("out of range" "--cache-memory: must be in 64..1048576, got 10"
+              fuzzy ${WORK}/creatures -o ${WORK}/never --cache-memory 10)
 run_cli_error("option without the one it refines" "--blended-only requires --consistent-blended"
               fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/never.map --blended-only)
 run_cli_error("--refined on an intrinsic collection" "--refined needs an extrinsic collection"

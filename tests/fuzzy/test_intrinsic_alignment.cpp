@@ -267,3 +267,37 @@ TEST_CASE("consistent blended map: the refined best fuzzy map wins where every b
   short_map.nearest.assign(3, 0);
   CHECK_THROWS_AS((void)aligner.score_map(0, 1, short_map), invalid_input);
 }
+
+TEST_CASE("intrinsic_aligner keeps its prepared shapes within cache_bytes and aligns the same whatever the budget") {
+  const auto c = make_creatures(3);
+  const auto load = [&](index_t k) { return c.meshes[std::size_t(k)]; };
+  const std::vector<std::pair<index_t, index_t>> pairs{{0, 1}, {1, 2}, {0, 2}, {0, 1}};
+  const intrinsic_aligner roomy(c.records, load);
+  std::vector<pair_alignment> expected;
+  for (const auto& [a, b] : pairs) expected.push_back(roomy.align(a, b));
+  CHECK(roomy.preparations() == 3);  // each shape once
+  const std::size_t three_shapes = roomy.cached_bytes();
+  CHECK(three_shapes > 3 * std::size_t(c.meshes[0].V.rows()) * 64 * sizeof(double));  // at least the tables
+
+  intrinsic_alignment_options tight;
+  tight.cache_bytes = three_shapes / 2;  // room for one shape: every pair prepares again
+  const intrinsic_aligner cramped(c.records, load, tight);
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const pair_alignment got = cramped.align(pairs[p].first, pairs[p].second);
+    CHECK(cramped.cached_bytes() <= tight.cache_bytes);
+    REQUIRE(got.alternatives.size() == expected[p].alternatives.size());
+    CHECK(got.initial == expected[p].initial);
+    for (std::size_t k = 0; k < got.alternatives.size(); ++k) {
+      const auto& x = got.alternatives[k];
+      const auto& y = expected[p].alternatives[k];
+      CHECK(x.global_score == y.global_score);
+      CHECK(x.scores.nonZeros() == y.scores.nonZeros());
+      CHECK(Eigen::MatrixXf(x.scores) == Eigen::MatrixXf(y.scores));
+    }
+  }
+  CHECK(cramped.preparations() > 2 * pairs.size());
+
+  intrinsic_alignment_options none;
+  none.cache_bytes = 0;
+  CHECK_THROWS_AS((void)intrinsic_aligner(c.records, load, none), invalid_input);
+}

@@ -16,6 +16,7 @@
 #include "shapestruct/conformal/mid_edge_flattening.hpp"
 #include "shapestruct/core/concepts/surface_mesh.hpp"
 #include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/heap_bytes.hpp"
 #include "shapestruct/core/triangle_mesh.hpp"
 #include "shapestruct/core/types.hpp"
 #include "shapestruct/core/validate.hpp"
@@ -246,6 +247,16 @@ class blended_shape {
   [[nodiscard]] index_t original_size() const noexcept { return original_vertices_; }
   /// What the repairs enabled in blended_shape_options::repairs changed (nothing when none was enabled or needed).
   [[nodiscard]] const sphere_repair_report& repairs() const noexcept { return repairs_; }
+  /// Bytes held on the heap (core/heap_bytes.hpp): what a cache of prepared shapes keeps per shape. Most of it
+  /// is the sample distance table (#V x num_samples) and the flattening's split triangulation and trees.
+  [[nodiscard]] std::size_t heap_bytes() const noexcept {
+    using shapestruct::heap_bytes;
+    return heap_bytes(mesh_) + flat_.heap_bytes() + (geo_ ? sizeof(*geo_) + geo_->heap_bytes() : 0) +
+           (cpq_ ? sizeof(*cpq_) + cpq_->heap_bytes() : 0) + heap_bytes(samples_) + heap_bytes(table_) +
+           heap_bytes(convexity_) + heap_bytes(agd_) + heap_bytes(features_) + heap_bytes(feature_table_) +
+           heap_bytes(interp_index_) + heap_bytes(interp_weight_) + heap_bytes(internal_of_) +
+           heap_bytes(original_of_) + heap_bytes(repairs_.holes_filled);
+  }
 
  private:
   triangle_mesh<Scalar> mesh_;

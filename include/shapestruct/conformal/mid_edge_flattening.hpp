@@ -21,6 +21,7 @@
 #include "shapestruct/conformal/planar_triangle_locator.hpp"
 #include "shapestruct/core/concepts/surface_mesh.hpp"
 #include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/heap_bytes.hpp"
 #include "shapestruct/core/status.hpp"
 #include "shapestruct/core/surface_point.hpp"
 #include "shapestruct/core/triangle_mesh.hpp"
@@ -88,6 +89,14 @@ class mid_edge_flattening {
   [[nodiscard]] status info() const noexcept { return info_; }
   /// The face that was cut out.
   [[nodiscard]] index_t cut_face() const noexcept { return cut_; }
+  /// Bytes held on the heap (core/heap_bytes.hpp), the planar locator and the vertex kd-tree included.
+  [[nodiscard]] std::size_t heap_bytes() const noexcept {
+    using shapestruct::heap_bytes;
+    return heap_bytes(faces_) + heap_bytes(face_edges_) + heap_bytes(edges_) + heap_bytes(edge_faces_) +
+           heap_bytes(used_) + heap_bytes(u_) + heap_bytes(edge_z_) + heap_bytes(vertex_z_) + heap_bytes(density_) +
+           heap_bytes(log_density_) + heap_bytes(sub_face_) + heap_bytes(sub_bary_) + locator_.heap_bytes() +
+           (vertex_index_ ? sizeof(*vertex_index_) + vertex_index_->heap_bytes() : 0);
+  }
   /// Complex coordinate of every vertex (#V).
   [[nodiscard]] const std::vector<complex>& vertex_coordinates() const noexcept { return vertex_z_; }
   /// Complex coordinate of every edge's mid-point (#E) and the edges' vertex pairs (#E x 2).

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/heap_bytes.hpp"
 #include "shapestruct/core/types.hpp"
 #include "shapestruct/detail/sorted_half_edges.hpp"
 
@@ -75,6 +76,12 @@ class planar_triangle_locator {
   }
 
   [[nodiscard]] index_t num_triangles() const noexcept { return tris_.rows(); }
+  /// Bytes held on the heap (core/heap_bytes.hpp).
+  [[nodiscard]] std::size_t heap_bytes() const noexcept {
+    using shapestruct::heap_bytes;
+    return heap_bytes(pts_) + heap_bytes(tris_) + heap_bytes(order_) + heap_bytes(big_) + heap_bytes(boxes_) +
+           heap_bytes(centers_) + heap_bytes(nodes_) + heap_bytes(neighbours_) + heap_bytes(walkable_);
+  }
   /// Whether locate_from may answer from its walk at triangle t (see there).
   [[nodiscard]] bool walkable(index_t t) const { return walkable_[static_cast<std::size_t>(t)] != 0; }
 

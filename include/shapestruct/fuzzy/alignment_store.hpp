@@ -17,6 +17,7 @@
 
 #include "shapestruct/collection/collection_files.hpp"
 #include "shapestruct/collection/pair_alignment.hpp"
+#include "shapestruct/collection/pair_visit_order.hpp"
 #include "shapestruct/collection/shape_record.hpp"
 #include "shapestruct/core/concepts/shape_aligner.hpp"
 #include "shapestruct/core/errors.hpp"
@@ -117,8 +118,12 @@ class alignment_store {
     std::mutex m;
     std::size_t done = 0;
     const unsigned workers = detail::resolve_threads(threads, "alignment_store::ensure");
-    detail::parallel_for(static_cast<index_t>(todo.size()), workers, [&](index_t i) {
-      const key& p = todo[std::size_t(i)];
+    // Pairs that share shapes run one after the other, so that an aligner's cache of prepared shapes is reused
+    // (intrinsic_aligner's); each pair's result is the same in any order.
+    const std::vector<std::size_t> visit = pair_visit_order(todo);
+    detail::parallel_for(static_cast<index_t>(todo.size()), workers, [&](index_t step) {
+      const std::size_t i = visit[std::size_t(step)];
+      const key& p = todo[i];
       try {
         const auto t0 = std::chrono::steady_clock::now();
         pair_alignment a = aligner.align(p.first, p.second);
@@ -126,12 +131,12 @@ class alignment_store {
         a.target = p.second;
         a.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (!folder_.empty()) write_pair_alignment(file_of(p), a);
-        finished[std::size_t(i)] = summary_of(a);
-        if (in_memory_) results[std::size_t(i)] = std::move(a);
+        finished[i] = summary_of(a);
+        if (in_memory_) results[i] = std::move(a);
       } catch (const std::exception& e) {
         if (!share.distributed()) throw;  // one process: the loop stops and rethrows it as it is
         std::lock_guard lock(m);
-        failure[std::size_t(i)] = e.what();
+        failure[i] = e.what();
         if (!first_failure) first_failure = std::current_exception();
       }
       std::lock_guard lock(m);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <list>
@@ -23,6 +24,7 @@
 #include "shapestruct/collection/pair_alignment.hpp"
 #include "shapestruct/collection/shape_record.hpp"
 #include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/heap_bytes.hpp"
 #include "shapestruct/core/triangle_mesh.hpp"
 #include "shapestruct/geometry/mesh_measures.hpp"
 #include "shapestruct/maps/surface_map.hpp"
@@ -40,7 +42,11 @@ struct intrinsic_alignment_options {
   double sigma_fraction = 0.15;
   index_t max_entries_per_row = 16;   ///< a(p_i, .) keeps this many largest entries per row
   float keep_fraction = 1e-3f;        ///< and drops entries below this fraction of the row's largest
-  index_t cache_shapes = 24;          ///< prepared shapes kept in memory (each a few MB per 10k vertices)
+  /// Prepared shapes kept in memory, at most this many and at most cache_bytes together (the least recently
+  /// used is dropped first). A prepared shape holds about 5 KB per vertex (blended_shape::heap_bytes: 65 MB for
+  /// a 12,500-vertex SCAPE scan), so the count alone let 24 TOSCA humans of 50,000 vertices take 6 GB.
+  index_t cache_shapes = 24;
+  std::size_t cache_bytes = std::size_t(1) << 31;  ///< 2 GiB
   /// An edge starts (iteration 0) from the blended map the matcher selects instead of the one with the best B
   /// (the chapter's). B is intrinsic and cannot tell a map from its symmetric flip; the matcher's selection
   /// (area, confidence and convexity ranks) often can. Off by default: on SHREC'07 it is 0.011 worse within 0.25 (glasses and pliers; docs/fuzzy.md).
@@ -128,9 +134,11 @@ class intrinsic_aligner {
     options_.matcher.threads = 1;
     options_.matcher.full_maps_for_all_groups = true;
     options_.matcher.on_stage = {};
-    if (!(options_.sigma_fraction > 0) || options_.max_entries_per_row < 1 || options_.cache_shapes < 2)
+    if (!(options_.sigma_fraction > 0) || options_.max_entries_per_row < 1 || options_.cache_shapes < 2 ||
+        options_.cache_bytes == 0)
       throw invalid_input(input_error::bad_parameter, no_index,
-                          "intrinsic_aligner: need sigma_fraction > 0, max_entries_per_row >= 1, cache_shapes >= 2");
+                          "intrinsic_aligner: need sigma_fraction > 0, max_entries_per_row >= 1, cache_shapes >= 2 "
+                          "and cache_bytes > 0");
   }
 
   [[nodiscard]] const intrinsic_alignment_options& options() const noexcept { return options_; }
@@ -193,6 +201,17 @@ class intrinsic_aligner {
     return {e, &e->mesh};
   }
 
+  /// How many times a shape was prepared (a cache miss; the first use of each shape included), and the bytes
+  /// the cache holds now.
+  [[nodiscard]] std::size_t preparations() const {
+    std::lock_guard lock(mutex_);
+    return preparations_;
+  }
+  [[nodiscard]] std::size_t cached_bytes() const {
+    std::lock_guard lock(mutex_);
+    return cached_bytes_;
+  }
+
   /// The collection's records (the ones given at construction).
   [[nodiscard]] const std::vector<shape_record>& records() const noexcept { return *records_; }
 
@@ -205,6 +224,7 @@ class intrinsic_aligner {
   struct entry {
     triangle_mesh<double> mesh;
     blended_shape<double> shape;
+    std::size_t bytes = 0;
   };
 
   static void check_geodesic_samples(const shape_record& rs, const shape_record& rt, index_t source) {
@@ -253,13 +273,20 @@ class intrinsic_aligner {
     auto so = options_.matcher.shape;
     so.threads = 1;
     e->shape = make_blended_shape(e->mesh, so);
+    e->bytes = sizeof(entry) + heap_bytes(e->mesh) + e->shape.heap_bytes();
     std::lock_guard lock(mutex_);
+    ++preparations_;
     const auto it = cache_.find(k);
     if (it != cache_.end()) return it->second;  // another thread prepared it meanwhile
     cache_.emplace(k, e);
+    cached_bytes_ += e->bytes;
     lru_.push_front(k);
-    while (static_cast<index_t>(lru_.size()) > options_.cache_shapes) {
-      cache_.erase(lru_.back());
+    // The newest always stays: a pair in progress holds its shapes anyway (shared_ptr), whatever the budget.
+    while (lru_.size() > 1 && (static_cast<index_t>(lru_.size()) > options_.cache_shapes ||
+                               cached_bytes_ > options_.cache_bytes)) {
+      const auto old = cache_.find(lru_.back());
+      cached_bytes_ -= old->second->bytes;
+      cache_.erase(old);
       lru_.pop_back();
     }
     return e;
@@ -271,6 +298,8 @@ class intrinsic_aligner {
   mutable std::mutex mutex_;
   mutable std::map<index_t, std::shared_ptr<const entry>> cache_;
   mutable std::list<index_t> lru_;
+  mutable std::size_t cached_bytes_ = 0;
+  mutable std::size_t preparations_ = 0;
 };
 
 }  // namespace shapestruct

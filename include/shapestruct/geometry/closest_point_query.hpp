@@ -17,6 +17,7 @@
 
 #include "shapestruct/core/concepts/surface_mesh.hpp"
 #include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/heap_bytes.hpp"
 #include "shapestruct/core/surface_point.hpp"
 #include "shapestruct/core/triangle_mesh.hpp"
 #include "shapestruct/core/types.hpp"
@@ -184,6 +185,11 @@ class closest_point_query {
   }
 
   [[nodiscard]] index_t num_faces() const noexcept { return F_.rows(); }
+  /// Bytes held on the heap (core/heap_bytes.hpp).
+  [[nodiscard]] std::size_t heap_bytes() const noexcept {
+    using shapestruct::heap_bytes;
+    return heap_bytes(V_) + heap_bytes(F_) + heap_bytes(nodes_) + heap_bytes(order_);
+  }
   /// The copied vertices (#V x 3) and faces (#F x 3) the answers refer to.
   [[nodiscard]] const matrix_x3<Scalar>& vertices() const noexcept { return V_; }
   [[nodiscard]] const face_matrix& faces() const noexcept { return F_; }

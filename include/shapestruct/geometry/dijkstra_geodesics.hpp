@@ -107,6 +107,10 @@ class dijkstra_geodesics {
   [[nodiscard]] const edge_graph<Scalar>& graph() const noexcept { return graph_; }
   /// Whether full runs use the bucket queue (see the class comment); the distances are the same either way.
   [[nodiscard]] bool uses_buckets() const noexcept { return bucket_count_ > 0; }
+  /// Bytes held on the heap (core/heap_bytes.hpp).
+  [[nodiscard]] std::size_t heap_bytes() const noexcept {
+    return graph_.heap_bytes() + shapestruct::heap_bytes(nbr_) + shapestruct::heap_bytes(off_);
+  }
 
   /// Edge-graph distance from `source` to every vertex.
   /// \returns (#V) distances, 0 at the source, +inf where unreachable.

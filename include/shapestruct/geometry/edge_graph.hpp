@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "shapestruct/core/concepts/surface_mesh.hpp"
+#include "shapestruct/core/heap_bytes.hpp"
 #include "shapestruct/core/triangle_mesh.hpp"
 #include "shapestruct/core/types.hpp"
 #include "shapestruct/core/validate.hpp"
@@ -95,6 +96,11 @@ struct edge_graph {
     Eigen::Matrix<index_t, Eigen::Dynamic, 1> d(num_vertices());
     for (index_t v = 0; v < num_vertices(); ++v) d[v] = degree(v);
     return d;
+  }
+  /// Bytes held on the heap (core/heap_bytes.hpp).
+  [[nodiscard]] std::size_t heap_bytes() const noexcept {
+    using shapestruct::heap_bytes;
+    return heap_bytes(offsets) + heap_bytes(neighbours) + heap_bytes(lengths) + heap_bytes(edge_ids) + heap_bytes(edges);
   }
 };
 

@@ -22,6 +22,7 @@
 
 #include "shapestruct/core/concepts/point_set.hpp"
 #include "shapestruct/core/errors.hpp"
+#include "shapestruct/core/heap_bytes.hpp"
 #include "shapestruct/core/types.hpp"
 #include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/knn/detail/morton_order.hpp"
@@ -143,6 +144,15 @@ class knn_index {
     return impl_ ? static_cast<index_t>(impl_->adaptor.data.size() / Dim) : 0;
   }
   [[nodiscard]] bool empty() const noexcept { return size() == 0; }
+  /// Bytes held on the heap (core/heap_bytes.hpp): the point copy, the id maps and nanoflann's tree.
+  [[nodiscard]] std::size_t heap_bytes() const noexcept {
+    if (!impl_) return 0;
+    using shapestruct::heap_bytes;
+    std::size_t n = sizeof(impl) + heap_bytes(impl_->adaptor.data) + heap_bytes(impl_->to_input) +
+                    heap_bytes(impl_->to_internal);
+    if (impl_->tree) n += sizeof(tree_type) + impl_->tree->usedMemory(*impl_->tree);
+    return n;
+  }
 
   /// Point i of the indexed copy, i in [0, size()) (unchecked, like Eigen's operator()).
   [[nodiscard]] Eigen::Map<const point_type> point(index_t i) const {
