@@ -17,7 +17,7 @@ namespace shapestruct {
 /// used most recently among the last `recent` shapes (ties: the earlier pair in `pairs`); when no pending pair
 /// touches them, the first pending pair. Deterministic, depends only on `pairs`.
 /// On the 135 alignments of 27 TOSCA humans, a cache of 7 prepared shapes (2 GiB) prepares 146 times in the order
-/// the graph asks for them, 102 in this one (docs/fuzzy.md). Complexity O(P recent d), d the largest number of
+/// the graph asks for them, 105 in this one (docs/fuzzy.md). Complexity O(P recent d), d the largest number of
 /// pairs of one shape.
 [[nodiscard]] inline std::vector<std::size_t> pair_visit_order(const std::vector<std::pair<index_t, index_t>>& pairs,
                                                                std::size_t recent = 8) {
