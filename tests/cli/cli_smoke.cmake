@@ -115,7 +115,7 @@ endforeach()
 # The prepared-shape cache at its smallest: the same files, and a line that says how often shapes were prepared.
 run_cli(0 out fuzzy ${WORK}/creatures -o ${WORK}/creatures_fuzzy_small_cache --mode intrinsic --samples 48 --threads 2
         --cache-memory 64)
-if(NOT out MATCHES "3 shapes prepared [0-9]+ times for intrinsic alignment \\(--cache-memory 64 MB\\)")
+if(NOT out MATCHES "[0-9]+ shapes prepared [0-9]+ times for intrinsic alignment \\(--cache-memory 64 MB\\)")
   message(FATAL_ERROR "fuzzy --cache-memory 64 does not say how often it prepared the shapes:\n${out}")
 endif()
 foreach(f graph.txt fuzzy.bin samples.txt)
