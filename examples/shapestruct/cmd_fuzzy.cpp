@@ -400,8 +400,8 @@ void add_fuzzy_run_options(CLI::App& app, fuzzy_cli_options& o, const std::strin
                         "with the pairs; the results are the same");
   app.add_option("--cache-memory", o.cache_memory_mb,
                  prefix + "memory for the shapes prepared for intrinsic alignment, kept for\n"
-                          "reuse (about 5 KB per vertex each; default 2048); less prepares\n"
-                          "shapes again more often; the results are the same")
+                          "reuse (about 5 KB per vertex each; default 2048): a smaller cache\n"
+                          "prepares shapes again more often; the results are the same")
       ->type_name("MB")
       ->check(in_range(64LL, 1048576LL));  // 64 MB .. 1 TB
 }

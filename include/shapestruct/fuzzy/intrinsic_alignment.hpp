@@ -43,8 +43,9 @@ struct intrinsic_alignment_options {
   index_t max_entries_per_row = 16;   ///< a(p_i, .) keeps this many largest entries per row
   float keep_fraction = 1e-3f;        ///< and drops entries below this fraction of the row's largest
   /// Prepared shapes kept in memory, at most this many and at most cache_bytes together (the least recently
-  /// used is dropped first). A prepared shape holds about 5 KB per vertex (blended_shape::heap_bytes: 65 MB for
-  /// a 12,500-vertex SCAPE scan), so the count alone let 24 TOSCA humans of 50,000 vertices take 6 GB.
+  /// used is dropped first; the newest stays even when it alone is larger). A prepared shape holds about 5 KB per
+  /// vertex (blended_shape::heap_bytes: 65 MB for a 12,500-vertex SCAPE scan), so the count alone let 24 TOSCA
+  /// humans of 50,000 vertices take 6 GB.
   index_t cache_shapes = 24;
   std::size_t cache_bytes = std::size_t(1) << 31;  ///< 2 GiB
   /// An edge starts (iteration 0) from the blended map the matcher selects instead of the one with the best B
