@@ -295,7 +295,17 @@ TEST_CASE("intrinsic_aligner keeps its prepared shapes within cache_bytes and al
       CHECK(Eigen::MatrixXf(x.scores) == Eigen::MatrixXf(y.scores));
     }
   }
-  CHECK(cramped.preparations() > 2 * pairs.size());
+  // Each pair prepares what the one before dropped, and align holds its two shapes from the match to the scores:
+  // (0, 1) 2, (1, 2) 1, (0, 2) 2, (0, 1) 2.
+  CHECK(cramped.preparations() == 7);
+
+  // A shape dropped from the cache while the caller still holds it is taken back, not prepared again.
+  const intrinsic_aligner pinned(c.records, load, tight);
+  const auto held = pinned.prepared_shape(0);
+  (void)pinned.align(1, 2);  // drops shape 0 from the cache
+  CHECK(pinned.cached_bytes() <= tight.cache_bytes);
+  CHECK(pinned.prepared_shape(0).get() == held.get());
+  CHECK(pinned.preparations() == 3);
 
   intrinsic_alignment_options none;
   none.cache_bytes = 0;

@@ -156,6 +156,9 @@ struct consistent_blended_map {
     throw invalid_input(input_error::size_mismatch, no_index,
                         "make_consistent_blended_map: the orientation has " + std::to_string(orientation.size()) +
                             " entries for a collection of " + std::to_string(f.shapes()));
+  // Held to the end, so that a cache too small for two shapes does not prepare them again between the steps.
+  const auto held_a = aligner.prepared_shape(a);
+  const auto held_b = aligner.prepared_shape(b);
   const pair_alignment alts = aligner.alignment_from(a, b, r);
   consistent_blended_map out;
   out.pairwise_group = r.selected;
@@ -209,6 +212,8 @@ struct consistent_blended_map {
                                                                         const fuzzy_correspondence& f, index_t a,
                                                                         index_t b,
                                                                         const consistent_blended_options& options = {}) {
+  const auto held_a = aligner.prepared_shape(a);
+  const auto held_b = aligner.prepared_shape(b);
   return make_consistent_blended_map(aligner, f, a, b, aligner.match(a, b), options);
 }
 

@@ -156,22 +156,7 @@ class intrinsic_aligner {
                                               const blended_match_result<double>& r) const {
     const auto a = prepared(source);
     const auto b = prepared(target);
-    const shape_record& rs = (*records_)[std::size_t(source)];
-    const shape_record& rt = (*records_)[std::size_t(target)];
-    check_geodesic_samples(rs, rt, source);
-    pair_alignment out;
-    out.source = source;
-    out.target = target;
-    for (std::size_t g = 0; g < r.blended.size(); ++g) {
-      if (r.blended[g].map.points.empty()) continue;
-      out.alternatives.push_back(alternative_of(*a, *b, rs, rt, r.blended[g].map));
-      out.alternatives.back().parameters = {double(g)};
-    }
-    out.initial = best_global_alternative(out.alternatives);
-    for (std::size_t k = 0; k < out.alternatives.size(); ++k)
-      if (static_cast<index_t>(out.alternatives[k].parameters.at(0)) == r.selected) out.preferred = static_cast<index_t>(k);
-    if (options_.start_from_matcher_selection && out.preferred != no_index) out.initial = out.preferred;
-    return out;
+    return alignment_from(*a, *b, source, target, r);
   }
 
   /// Any map of source vertices onto the target scored as an alternative of eq. 4.4-4.5 (parameters empty), so
@@ -218,7 +203,9 @@ class intrinsic_aligner {
 
   /// ShapeAligner: every blended map of the pair as an alternative, the one with the highest B first chosen.
   [[nodiscard]] pair_alignment align(index_t source, index_t target) const {
-    return alignment_from(source, target, match(source, target));
+    const auto a = prepared(source);
+    const auto b = prepared(target);
+    return alignment_from(*a, *b, source, target, blended_matcher<>(options_.matcher).match(a->shape, b->shape));
   }
 
  private:
@@ -227,6 +214,28 @@ class intrinsic_aligner {
     blended_shape<double> shape;
     std::size_t bytes = 0;
   };
+
+  /// alignment_from on shapes already prepared (align holds them from the match on, so that a small cache does
+  /// not prepare them again in between).
+  pair_alignment alignment_from(const entry& a, const entry& b, index_t source, index_t target,
+                                const blended_match_result<double>& r) const {
+    const shape_record& rs = (*records_)[std::size_t(source)];
+    const shape_record& rt = (*records_)[std::size_t(target)];
+    check_geodesic_samples(rs, rt, source);
+    pair_alignment out;
+    out.source = source;
+    out.target = target;
+    for (std::size_t g = 0; g < r.blended.size(); ++g) {
+      if (r.blended[g].map.points.empty()) continue;
+      out.alternatives.push_back(alternative_of(a, b, rs, rt, r.blended[g].map));
+      out.alternatives.back().parameters = {double(g)};
+    }
+    out.initial = best_global_alternative(out.alternatives);
+    for (std::size_t k = 0; k < out.alternatives.size(); ++k)
+      if (static_cast<index_t>(out.alternatives[k].parameters.at(0)) == r.selected) out.preferred = static_cast<index_t>(k);
+    if (options_.start_from_matcher_selection && out.preferred != no_index) out.initial = out.preferred;
+    return out;
+  }
 
   static void check_geodesic_samples(const shape_record& rs, const shape_record& rt, index_t source) {
     if (rs.sample_vertex.empty() || rs.sample_vertex[0] == no_index || rt.sample_geodesics.size() == 0)
@@ -268,6 +277,12 @@ class intrinsic_aligner {
         lru_.push_front(k);
         return it->second;
       }
+      // Dropped from the cache but still held by a pair in progress: take it back rather than prepare it again.
+      if (const auto held = evicted_.find(k); held != evicted_.end()) {
+        std::shared_ptr<const entry> e = held->second.lock();
+        evicted_.erase(held);
+        if (e) return keep(k, std::move(e));
+      }
     }
     auto e = std::make_shared<entry>();
     e->mesh = load_(k);
@@ -279,6 +294,11 @@ class intrinsic_aligner {
     ++preparations_;
     const auto it = cache_.find(k);
     if (it != cache_.end()) return it->second;  // another thread prepared it meanwhile
+    return keep(k, std::move(e));
+  }
+
+  /// Puts shape k first in the cache and drops the least recently used beyond the budget. Under mutex_.
+  std::shared_ptr<const entry> keep(index_t k, std::shared_ptr<const entry> e) const {
     cache_.emplace(k, e);
     cached_bytes_ += e->bytes;
     lru_.push_front(k);
@@ -287,6 +307,8 @@ class intrinsic_aligner {
                                cached_bytes_ > options_.cache_bytes)) {
       const auto old = cache_.find(lru_.back());
       cached_bytes_ -= old->second->bytes;
+      std::erase_if(evicted_, [](const auto& held) { return held.second.expired(); });
+      evicted_[old->first] = old->second;
       cache_.erase(old);
       lru_.pop_back();
     }
@@ -299,6 +321,7 @@ class intrinsic_aligner {
   mutable std::mutex mutex_;
   mutable std::map<index_t, std::shared_ptr<const entry>> cache_;
   mutable std::list<index_t> lru_;
+  mutable std::map<index_t, std::weak_ptr<const entry>> evicted_;  ///< dropped shapes, alive while a pair holds them
   mutable std::size_t cached_bytes_ = 0;
   mutable std::size_t preparations_ = 0;
 };
