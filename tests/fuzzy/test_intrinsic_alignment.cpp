@@ -3,6 +3,7 @@
 // blended map (ch. 4.4.5) with its margin over the blended matcher's own choice.
 #include <algorithm>
 #include <cmath>
+#include <thread>
 #include <vector>
 
 #include <doctest/doctest.h>
@@ -306,6 +307,17 @@ TEST_CASE("intrinsic_aligner keeps its prepared shapes within cache_bytes and al
   CHECK(pinned.cached_bytes() <= tight.cache_bytes);
   CHECK(pinned.prepared_shape(0).get() == held.get());
   CHECK(pinned.preparations() == 3);
+
+  // Threads that need a shape another thread is preparing wait for it instead of preparing it too.
+  const intrinsic_aligner shared(c.records, load);
+  std::vector<pair_alignment> parallel(pairs.size());
+  {
+    std::vector<std::jthread> workers;
+    for (std::size_t p = 0; p < pairs.size(); ++p)
+      workers.emplace_back([&, p] { parallel[p] = shared.align(pairs[p].first, pairs[p].second); });
+  }
+  CHECK(shared.preparations() == 3);
+  for (std::size_t p = 0; p < pairs.size(); ++p) CHECK(parallel[p].initial == expected[p].initial);
 
   intrinsic_alignment_options none;
   none.cache_bytes = 0;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -13,6 +14,7 @@
 #include <memory>
 #include <mutex>
 #include <numeric>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -270,7 +272,9 @@ class intrinsic_aligner {
 
   std::shared_ptr<const entry> prepared(index_t k) const {
     {
-      std::lock_guard lock(mutex_);
+      std::unique_lock lock(mutex_);
+      // One preparation per shape at a time: a thread that needs a shape another is preparing waits for it.
+      prepared_elsewhere_.wait(lock, [&] { return !preparing_.contains(k); });
       const auto it = cache_.find(k);
       if (it != cache_.end()) {
         lru_.remove(k);
@@ -283,7 +287,19 @@ class intrinsic_aligner {
         evicted_.erase(held);
         if (e) return keep(k, std::move(e));
       }
+      preparing_.insert(k);
     }
+    struct done_preparing {  // also when loading or preparing throws
+      const intrinsic_aligner& self;
+      index_t k;
+      ~done_preparing() {
+        {
+          std::lock_guard lock(self.mutex_);
+          self.preparing_.erase(k);
+        }
+        self.prepared_elsewhere_.notify_all();
+      }
+    } guard{*this, k};
     auto e = std::make_shared<entry>();
     e->mesh = load_(k);
     auto so = options_.matcher.shape;
@@ -292,8 +308,6 @@ class intrinsic_aligner {
     e->bytes = sizeof(entry) + heap_bytes(e->mesh) + e->shape.heap_bytes();
     std::lock_guard lock(mutex_);
     ++preparations_;
-    const auto it = cache_.find(k);
-    if (it != cache_.end()) return it->second;  // another thread prepared it meanwhile
     return keep(k, std::move(e));
   }
 
@@ -319,6 +333,8 @@ class intrinsic_aligner {
   loader load_;
   intrinsic_alignment_options options_;
   mutable std::mutex mutex_;
+  mutable std::condition_variable prepared_elsewhere_;
+  mutable std::set<index_t> preparing_;  ///< shapes being prepared by some thread now
   mutable std::map<index_t, std::shared_ptr<const entry>> cache_;
   mutable std::list<index_t> lru_;
   mutable std::map<index_t, std::weak_ptr<const entry>> evicted_;  ///< dropped shapes, alive while a pair holds them
