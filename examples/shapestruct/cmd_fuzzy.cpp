@@ -116,8 +116,13 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
     }
     // A scale per axis fits shapes of other proportions closely; it needs the upright frame (docs/fuzzy.md).
     eo.axis_scales = !c.no_axis_scales && eo.up_axis != no_up_axis;
-    map = refined_fuzzy_vertex_map(f, records, a, b, read_mesh(files[std::size_t(a)]).mesh.V,
-                                   read_mesh(files[std::size_t(b)]).mesh.V, eo);
+    try {
+      map = refined_fuzzy_vertex_map(f, records, a, b, read_mesh(files[std::size_t(a)]).mesh.V,
+                                     read_mesh(files[std::size_t(b)]).mesh.V, eo);
+    } catch (const invalid_input& e) {
+      if (e.reason() != input_error::empty) throw;
+      throw invalid_input(e.reason(), e.element(), std::string(e.what()) + ": fuzzy-map without --refined writes it");
+    }
   } else {
     const bool on_vertices = !records[std::size_t(b)].sample_vertex.empty() && records[std::size_t(b)].sample_vertex[0] != no_index;
     const Eigen::Matrix<double, Eigen::Dynamic, 3> Vb =

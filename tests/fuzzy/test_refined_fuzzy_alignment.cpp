@@ -150,5 +150,6 @@ TEST_CASE("refined fuzzy alignment: shapes with no fuzzy correspondence between 
   } catch (const invalid_input& error) {
     CHECK(error.reason() == input_error::empty);
     CHECK(std::string(error.what()).find("copy1") != std::string::npos);
+    CHECK(std::string(error.what()).find("all but 0 of the " + std::to_string(K) + " samples") != std::string::npos);
   }
 }

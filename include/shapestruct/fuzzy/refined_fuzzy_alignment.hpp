@@ -56,8 +56,8 @@ Similarity fit_to_matches(const std::vector<Eigen::Vector3d>& target_points,
 /// \returns the alternative: its scores rank b's samples for each sample of a, its parameters the transform
 ///          (extrinsic_transform)
 /// \throws invalid_input (bad_parameter) for shapes out of range or a == b, or options out of range; (empty)
-///         when no sample of a has a fuzzy correspondence on b (the two shapes are in different components of
-///         the graph); as align_extrinsic for bad records.
+///         when fewer than 3 samples of a have a non-zero f on b (shapes in different components of the graph, or
+///         that the embedding puts far apart); as align_extrinsic for bad records.
 [[nodiscard]] inline alignment_alternative refined_fuzzy_alignment(const fuzzy_correspondence& f,
                                                                    const std::vector<shape_record>& records,
                                                                    index_t a, index_t b,
@@ -84,11 +84,16 @@ Similarity fit_to_matches(const std::vector<Eigen::Vector3d>& target_points,
     target_points.push_back(rb.samples.row(j).transpose());
     source_points.push_back(ra.samples.row(i).transpose());
   }
-  if (target_points.size() < 3)
+  if (target_points.size() < 3)  // f vanishes: the collection does not say where these shapes correspond
     throw invalid_input(input_error::empty, no_index,
                         std::string(who) + ": shapes '" + ra.name + "' and '" + rb.name +
-                            "' have no fuzzy correspondence (fewer than 3 samples with f > 0): they are not "
-                            "connected in the collection's alignment graph");
+                            "' have no fuzzy correspondence: f is zero on '" + rb.name + "' for all but " +
+                            std::to_string(target_points.size()) + " of the " + std::to_string(F.rows()) +
+                            " samples of '" + ra.name + "' (the others lie beyond f's cutoff in the embedding), and an "
+                            "alignment needs 3; the collection relates "
+                            "the two too weakly (they lie in different components of its alignment graph, or far "
+                            "apart in its embedding). Their best fuzzy map (nearest in the embedding) is still "
+                            "defined");
 
   const detail::extrinsic_pair_geometry geometry(ra, rb);
   if (options.up_axis == no_up_axis)
