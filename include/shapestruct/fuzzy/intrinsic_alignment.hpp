@@ -234,7 +234,8 @@ class intrinsic_aligner {
     }
     out.initial = best_global_alternative(out.alternatives);
     for (std::size_t k = 0; k < out.alternatives.size(); ++k)
-      if (static_cast<index_t>(out.alternatives[k].parameters.at(0)) == r.selected) out.preferred = static_cast<index_t>(k);
+      if (static_cast<index_t>(out.alternatives[k].parameters.at(0)) == r.selected)
+        out.preferred = static_cast<index_t>(k);
     if (options_.start_from_matcher_selection && out.preferred != no_index) out.initial = out.preferred;
     return out;
   }
