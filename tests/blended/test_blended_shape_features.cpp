@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
-// blended_shape's feature points: too few AGD maxima completed to blended_shape_options::min_features, and
-// maxima below min_feature_persistence dropped.
+// blended_shape's feature points: too few AGD maxima completed to blended_shape_options::min_features, maxima
+// below min_feature_persistence dropped, and the second feature set without the low bumps.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <doctest/doctest.h>
@@ -42,6 +43,33 @@ triangle_mesh<double> two_tips() {
     m.V.row(v) = (r * p).transpose();
   }
   return m;
+}
+
+/// The five-armed creature with three small bumps side by side on its body (as a dog's eyes and mouth on its
+/// head): the highest is an AGD maximum of low persistence, the others are suppressed beside it.
+triangle_mesh<double> bumpy_creature() {
+  auto m = test::armed_sphere(4, 5);
+  const Eigen::Vector3d centres[3] = {Eigen::Vector3d(0.3, 0.6, 0.75).normalized(),
+                                      Eigen::Vector3d(0.6, 0.3, 0.75).normalized(),
+                                      Eigen::Vector3d(0.45, 0.45, 0.78).normalized()};
+  for (index_t v = 0; v < m.V.rows(); ++v) {
+    const Eigen::Vector3d p = m.V.row(v).transpose();
+    const Eigen::Vector3d n = p.normalized();
+    double bump = 0;
+    for (const auto& c : centres) {
+      const double angle = std::acos(std::min(1.0, n.dot(c)));
+      bump += 0.3 * std::exp(-angle * angle / (2 * 0.08 * 0.08));
+    }
+    m.V.row(v) = ((p.norm() + bump) * n).transpose();
+  }
+  return m;
+}
+
+bool same_map(const surface_map<double>& x, const surface_map<double>& y) {
+  if (x.points.size() != y.points.size()) return false;
+  for (std::size_t i = 0; i < x.points.size(); ++i)
+    if (x.points[i].face != y.points[i].face || x.points[i].bary != y.points[i].bary) return false;
+  return true;
 }
 }  // namespace
 
@@ -151,4 +179,82 @@ TEST_CASE("blended_shape completes to at most max_features and refuses a negativ
   CHECK(blended_shape<double>(m.V, m.F, o).features().size() == 3);
   o.min_features = -1;
   CHECK_THROWS_AS(blended_shape<double>(m.V, m.F, o), invalid_input);
+}
+
+TEST_CASE("blended_shape's alternative drops the maxima below alternative_feature_persistence and shares the rest") {
+  const auto m = bumpy_creature();
+  blended_shape_options one_set = small_options();
+  one_set.alternative_feature_persistence = 0;
+  const blended_shape<double> plain(m.V, m.F, one_set);
+  CHECK(plain.alternative() == nullptr);
+  const auto persistence = maximum_persistence<double>(plain.geodesics().graph(), plain.agd(), plain.features());
+  std::vector<index_t> expected;
+  for (std::size_t i = 0; i < persistence.size(); ++i)
+    if (persistence[i] >= 0.08) expected.push_back(plain.features()[i]);
+  REQUIRE(expected.size() >= 4);  // the arm tips
+  REQUIRE(expected.size() < plain.features().size());  // and a bump below 0.08
+
+  blended_shape_options two_sets = small_options();
+  two_sets.alternative_feature_persistence = 0.08;
+  const blended_shape<double> s(m.V, m.F, two_sets);
+  CHECK(s.features() == plain.features());  // the first set is the full one, unchanged
+  REQUIRE(s.alternative() != nullptr);
+  CHECK(s.alternative()->features() == expected);
+  CHECK(s.alternative()->alternative() == nullptr);
+  CHECK(s.alternative()->feature_distances().cols() == static_cast<index_t>(expected.size()));
+  CHECK(&s.alternative()->sample_distances() == &s.sample_distances());  // shared, not copied
+  CHECK(&s.alternative()->geodesics() == &s.geodesics());
+  CHECK(s.heap_bytes() > plain.heap_bytes());
+  CHECK(s.heap_bytes() < plain.heap_bytes() + plain.heap_bytes() / 5);
+
+  // No maximum below the threshold: no second set.
+  two_sets.alternative_feature_persistence = 0.5 * *std::min_element(persistence.begin(), persistence.end());
+  CHECK(blended_shape<double>(m.V, m.F, two_sets).alternative() == nullptr);
+  CHECK(blended_shape<double>(test::armed_sphere(4, 5).V, test::armed_sphere(4, 5).F, small_options()).alternative() ==
+        nullptr);
+  two_sets.alternative_feature_persistence = -0.1;
+  CHECK_THROWS_AS((void)blended_shape<double>(m.V, m.F, two_sets), invalid_input);
+  two_sets.alternative_feature_persistence = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_AS((void)blended_shape<double>(m.V, m.F, two_sets), invalid_input);
+}
+
+TEST_CASE("blended_matcher keeps the feature set whose blended map distorts geodesic distances less") {
+  blended_matcher_options o;
+  o.shape = small_options();
+  o.refine = false;
+  o.threads = 2;
+  const blended_matcher<> matcher(o);
+  blended_matcher_options one_set_options = o;
+  one_set_options.shape.alternative_feature_persistence = 0;
+  const blended_matcher<> one_set(one_set_options);
+
+  const auto source = bumpy_creature();
+  const auto target = test::armed_sphere(4, 6);
+  const auto a = matcher.prepare(source);
+  const auto b = matcher.prepare(target);
+  REQUIRE(a.alternative() != nullptr);
+  REQUIRE(b.alternative() == nullptr);
+
+  // The two runs on their own: the full set, and the source's alternative against the target.
+  const auto full = one_set.match(one_set.prepare(source), one_set.prepare(target));
+  const auto fewer = matcher.match(*a.alternative(), b);
+  const double d_full = full.blended[static_cast<std::size_t>(full.selected)].geodesic_distortion;
+  const double d_fewer = fewer.blended[static_cast<std::size_t>(fewer.selected)].geodesic_distortion;
+  REQUIRE(d_fewer != d_full);  // a pair that tells the rule from its reverse (here the alternative wins)
+  CHECK_FALSE(full.alternative_features);
+  CHECK(std::isnan(full.other_features_distortion));
+
+  const auto r = matcher.match(a, b);
+  const bool take_fewer = d_fewer < d_full;
+  CHECK(r.alternative_features == take_fewer);
+  CHECK(same_map(r.map, take_fewer ? fewer.map : full.map));
+  CHECK(r.blended[static_cast<std::size_t>(r.selected)].geodesic_distortion == (take_fewer ? d_fewer : d_full));
+  CHECK(r.other_features_distortion == (take_fewer ? d_full : d_fewer));
+  CHECK(r.candidates.size() == (take_fewer ? fewer : full).candidates.size());
+  // Both runs' stages are timed, the second set's marked.
+  const auto marked = std::count_if(r.timings.begin(), r.timings.end(), [](const auto& t) {
+    return t.first.find(", alternative features") != std::string::npos;
+  });
+  CHECK(marked == static_cast<long>(full.timings.size()));
+  CHECK(r.timings.size() == 2 * full.timings.size());
 }

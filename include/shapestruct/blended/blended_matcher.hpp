@@ -160,6 +160,11 @@ struct blended_match_result {
   surface_map<Scalar> refined_map;
   Scalar refined_distortion = 0;
   bool refinement_accepted = false;
+  /// Whether the map comes from the shapes' second feature sets (blended_shape::alternative; false when neither
+  /// shape has one), and the geodesic distortion of the other set's selected blended map (NaN when there was
+  /// only one set).
+  bool alternative_features = false;
+  Scalar other_features_distortion = std::numeric_limits<Scalar>::quiet_NaN();
 };
 
 /// Blended intrinsic maps (Kim, Lipman & Funkhouser 2011; dissertation ch. 3) with swappable policies:
@@ -222,15 +227,67 @@ class blended_matcher {
   }
 
   /// Matches two prepared shapes; output maps use the input meshes' vertex numbering.
+  /// When either shape has a second feature set (blended_shape::alternative), the pair is matched with both
+  /// sets up to the blended map, and the one whose selected blended map distorts geodesic distances less is
+  /// kept (ties: the full set) and refined; blended_match_result::alternative_features says which.
   /// Complexity: dominated by the consistency matrix, O(pairs * samples * log F / threads).
   [[nodiscard]] blended_match_result<double> match(const blended_shape<double>& a,
                                                    const blended_shape<double>& b) const {
+    blended_run run = match_unrefined(a, b, "");
+    if (a.alternative() || b.alternative()) {
+      const blended_shape<double>& a2 = a.alternative() ? *a.alternative() : a;
+      const blended_shape<double>& b2 = b.alternative() ? *b.alternative() : b;
+      blended_run second = match_unrefined(a2, b2, ", alternative features");
+      const double full = run.out.blended[static_cast<std::size_t>(run.out.selected)].geodesic_distortion;
+      const double fewer = second.out.blended[static_cast<std::size_t>(second.out.selected)].geodesic_distortion;
+      // A distortion that could not be measured (NaN) loses.
+      const bool take_second = fewer < full || (std::isnan(full) && !std::isnan(fewer));
+      // Timings: the full set's stages, then the alternative's, whichever is kept.
+      std::vector<std::pair<std::string, double>> timings = std::move(run.out.timings);
+      timings.insert(timings.end(), second.out.timings.begin(), second.out.timings.end());
+      if (take_second) run = std::move(second);
+      run.out.alternative_features = take_second;
+      run.out.other_features_distortion = take_second ? full : fewer;
+      run.out.timings = std::move(timings);
+    }
+    if (options_.refine) {
+      const auto t = clock::now();
+      auto& out = run.out;
+      const blended_shape<double>& ra = out.alternative_features && a.alternative() ? *a.alternative() : a;
+      const blended_shape<double>& rb = out.alternative_features && b.alternative() ? *b.alternative() : b;
+      const auto& chosen = out.blended[static_cast<std::size_t>(out.selected)];
+      const surface_map<double> refined = refiner_.refine(ra.mesh(), rb.mesh(), run.internal, options_.threads);
+      out.refined_distortion = shapestruct::geodesic_distortion(ra, rb, sample_images(ra, rb, refined.points));
+      out.refined_map = to_input_numbering(ra, rb, refined);
+      out.refinement_accepted =
+          !(options_.max_refined_distortion_ratio > 0) ||
+          out.refined_distortion <= options_.max_refined_distortion_ratio * chosen.geodesic_distortion;
+      if (out.refinement_accepted) out.map = out.refined_map;
+      const double s = seconds(t);
+      out.timings.emplace_back("refinement", s);
+      if (options_.on_stage) options_.on_stage("refinement", s);
+    }
+    return std::move(run.out);
+  }
+
+ private:
+  /// A match up to the selected blended map, and that map in the shapes' internal numbering (for the refiner).
+  struct blended_run {
+    blended_match_result<double> out;
+    surface_map<double> internal;
+  };
+
+  /// Candidates, confidence, consistency, eigenvectors, groups, blending and selection; `suffix` is appended to
+  /// the stage names (the second feature set's run).
+  blended_run match_unrefined(const blended_shape<double>& a, const blended_shape<double>& b,
+                              const std::string& suffix) const {
     using Scalar = double;
-    blended_match_result<Scalar> out;
+    blended_run run;
+    auto& out = run.out;
     auto stage = [&](const char* name, clock::time_point since) {
       const double s = seconds(since);
-      out.timings.emplace_back(name, s);
-      if (options_.on_stage) options_.on_stage(name, s);
+      out.timings.emplace_back(name + suffix, s);
+      if (options_.on_stage) options_.on_stage(name + suffix, s);
     };
     auto t = clock::now();
     out.candidates = candidates_(a, b);
@@ -281,21 +338,10 @@ class blended_matcher {
     }
     out.map = chosen.map;
     stage("blending", t);
-    if (options_.refine) {
-      t = clock::now();
-      const surface_map<Scalar> refined = refiner_.refine(a.mesh(), b.mesh(), internal, options_.threads);
-      out.refined_distortion = shapestruct::geodesic_distortion(a, b, sample_images(a, b, refined.points));
-      out.refined_map = to_input_numbering(a, b, refined);
-      out.refinement_accepted =
-          !(options_.max_refined_distortion_ratio > 0) ||
-          out.refined_distortion <= options_.max_refined_distortion_ratio * chosen.geodesic_distortion;
-      if (out.refinement_accepted) out.map = out.refined_map;
-      stage("refinement", t);
-    }
-    return out;
+    run.internal = std::move(internal);
+    return run;
   }
 
- private:
   /// Keeps the options_.max_maps candidates with the largest sum_p c_i(p)^2 (ties: lower index), in their order.
   void keep_most_confident(std::vector<candidate_map<double>>& maps, matrix_x<double>& confidence) const {
     const index_t K = static_cast<index_t>(maps.size());

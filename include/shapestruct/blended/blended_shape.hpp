@@ -50,6 +50,14 @@ struct blended_shape_options {
   /// extremities (a fish's fins) lie as low as bumps, and every threshold measured lost on SHREC'07
   /// (docs/blended_maps.md).
   double min_feature_persistence = 0;
+  /// A second feature set: the same maxima without those whose AGD persistence is below this (units of
+  /// sqrt(area)). blended_matcher matches with both sets and keeps the blended map that distorts geodesic
+  /// distances less. Bumps on an extremity (a dog's eyes and mouth) give near-duplicate triplet maps that
+  /// outvote the true ones in S~; without them the true group forms. Where small extremities are the features
+  /// that matter (a fish's fins, a horse's ears) the full set's map is the less distorted and is kept. Only shapes
+  /// that have such bumps get the second set (blended_shape::alternative). 0 = one feature set, as in the
+  /// chapter (the measurements: docs/blended_maps.md).
+  double alternative_feature_persistence = 0.08;
   /// Fewest feature points. A shape whose AGD has fewer maxima (SHREC'07 glasses 43-45: only the two temple tips)
   /// is completed with its most central vertex (least AGD) and then with geodesic farthest points from the
   /// features so far. With fewer than three features on a side no triplet map exists, and three give a single
@@ -123,11 +131,13 @@ class blended_shape {
                 const blended_shape_options& options = {}) {
     if (options.num_samples < 3 || options.max_features < 3 || !(options.feature_radius > 0) ||
         options.min_features < 0 || !(options.min_feature_persistence >= 0) ||
-        !std::isfinite(options.min_feature_persistence) ||
+        !std::isfinite(options.min_feature_persistence) || !(options.alternative_feature_persistence >= 0) ||
+        !std::isfinite(options.alternative_feature_persistence) ||
         options.interpolation_samples < 1 || !(options.cut_clearance >= 0) || !std::isfinite(options.cut_clearance))
       throw invalid_input(input_error::bad_parameter, no_index,
                           "blended_shape: need num_samples >= 3, max_features >= 3, feature_radius > 0, "
-                          "min_features >= 0, a finite min_feature_persistence >= 0, interpolation_samples >= 1 "
+                          "min_features >= 0, finite min_feature_persistence and alternative_feature_persistence >= 0, "
+                          "interpolation_samples >= 1 "
                           "and a finite cut_clearance >= 0");
     repaired_sphere<Scalar> r = repair_to_sphere<Scalar>(V, F, options.repairs, "blended_shape",
                                                                options.flattening.accept_pinched_vertices);
@@ -157,9 +167,9 @@ class blended_shape {
     const auto fps = geodesic_farthest_point_sampling(*geo_, S, start);
     samples_ = fps.indices;
     spacing_ = fps.radii.empty() ? Scalar(1) : std::max(fps.radii.back(), Scalar(1e-6));
-    table_ = geo_->distance_table(std::span<const index_t>(samples_), options.threads);
+    matrix_x<Scalar> table = geo_->distance_table(std::span<const index_t>(samples_), options.threads);
     // AGD from the same table (samples are even, so equal weights approximate the area integral).
-    agd_ = table_.rowwise().mean();
+    agd_ = table.rowwise().mean();
     auto maxima = agd_local_maxima<Scalar>(mesh_.V, mesh_.F, agd_, options.feature_radius);
     if (options.min_feature_persistence > 0) {
       const auto persistence = maximum_persistence<Scalar>(geo_->graph(), agd_, maxima);
@@ -168,22 +178,7 @@ class blended_shape {
         if (persistence[i] >= Scalar(options.min_feature_persistence)) kept.push_back(maxima[i]);
       maxima = std::move(kept);
     }
-    if (static_cast<index_t>(maxima.size()) > options.max_features) maxima.resize(static_cast<std::size_t>(options.max_features));
-    agd_maxima_ = static_cast<index_t>(maxima.size());
-    const index_t wanted = std::min(options.min_features, options.max_features);
-    if (agd_maxima_ < wanted) complete_features(maxima, wanted);
-    features_ = std::move(maxima);
-    feature_table_ = geo_->distance_table(std::span<const index_t>(features_), options.threads);
-    // The flattening is built once, after the features, with its cut already chosen: the automatic cut is the
-    // largest face (the flattening's own rule), moved away from the features when it is too close to one.
-    mid_edge_flattening_options fo = options.flattening;
-    if (fo.cut_face == no_index && options.cut_clearance > 0) {
-      index_t largest = 0;
-      face_areas<Scalar>(mesh_.V, mesh_.F, validation_level::trust).maxCoeff(&largest);
-      fo.cut_face = detail::cut_face_away_from_features<Scalar>(mesh_.V, mesh_.F, largest, feature_table_, agd_,
-                                                                Scalar(options.cut_clearance));
-    }
-    flat_ = mid_edge_flattening<Scalar>(mesh_.V, mesh_.F, fo, validation_level::trust);
+    place_features(maxima, options);
     // Interpolation weights: the K nearest samples of every vertex, Gaussian in geodesic distance.
     const index_t K = std::min(options.interpolation_samples, S);
     interp_index_.resize(nv, K);
@@ -192,10 +187,10 @@ class blended_shape {
       std::vector<index_t> order(static_cast<std::size_t>(S));
       std::iota(order.begin(), order.end(), index_t(0));
       std::partial_sort(order.begin(), order.begin() + K, order.end(),
-                        [&](index_t a, index_t b) { return table_(v, a) < table_(v, b) || (table_(v, a) == table_(v, b) && a < b); });
+                        [&](index_t a, index_t b) { return table(v, a) < table(v, b) || (table(v, a) == table(v, b) && a < b); });
       Scalar sum = 0;
       for (index_t k = 0; k < K; ++k) {
-        const Scalar d = table_(v, order[static_cast<std::size_t>(k)]) / spacing_;
+        const Scalar d = table(v, order[static_cast<std::size_t>(k)]) / spacing_;
         const Scalar w = std::exp(-Scalar(0.5) * d * d) + Scalar(1e-300);
         interp_index_(v, k) = order[static_cast<std::size_t>(k)];
         interp_weight_(v, k) = w;
@@ -205,20 +200,33 @@ class blended_shape {
     });
     cpq_ = std::make_shared<closest_point_query<Scalar>>(mesh_.V, mesh_.F);
     std::vector<Scalar> radii(options.convexity_radii.begin(), options.convexity_radii.end());
-    convexity_ = geodesic_ball_convexity<Scalar>(mesh_.V, mesh_.F, table_, std::span<const index_t>(samples_),
+    convexity_ = geodesic_ball_convexity<Scalar>(mesh_.V, mesh_.F, table, std::span<const index_t>(samples_),
                                                  std::span<const Scalar>(radii), options.threads);
+    table_ = std::make_shared<const matrix_x<Scalar>>(std::move(table));
+    if (options.alternative_feature_persistence > options.min_feature_persistence && !maxima.empty()) {
+      const auto persistence = maximum_persistence<Scalar>(geo_->graph(), agd_, maxima);
+      std::vector<index_t> kept;
+      for (std::size_t i = 0; i < maxima.size(); ++i)
+        if (persistence[i] >= Scalar(options.alternative_feature_persistence)) kept.push_back(maxima[i]);
+      if (kept.size() < maxima.size()) {
+        // A copy shares the geodesics, the distance table and (when the cut stays) the flattening.
+        auto other = std::make_shared<blended_shape>(*this);
+        other->place_features(std::move(kept), options, flat_);
+        if (other->features_ != features_) alternative_ = std::move(other);
+      }
+    }
   }
 
   /// The (possibly repaired) mesh scaled to unit area.
   [[nodiscard]] const triangle_mesh<Scalar>& mesh() const noexcept { return mesh_; }
   /// sqrt of the original area: multiply unit-area lengths by it to get the input's units.
   [[nodiscard]] Scalar scale() const noexcept { return scale_; }
-  [[nodiscard]] const mid_edge_flattening<Scalar>& flattening() const noexcept { return flat_; }
+  [[nodiscard]] const mid_edge_flattening<Scalar>& flattening() const noexcept { return *flat_; }
   [[nodiscard]] const dijkstra_geodesics<Scalar>& geodesics() const noexcept { return *geo_; }
   [[nodiscard]] const closest_point_query<Scalar>& closest_points() const noexcept { return *cpq_; }
   /// Even samples P_even (vertex ids) and the (#V x #samples) unit-area geodesic distance table.
   [[nodiscard]] const std::vector<index_t>& samples() const noexcept { return samples_; }
-  [[nodiscard]] const matrix_x<Scalar>& sample_distances() const noexcept { return table_; }
+  [[nodiscard]] const matrix_x<Scalar>& sample_distances() const noexcept { return *table_; }
   /// Covering radius of the samples (unit-area units).
   [[nodiscard]] Scalar sample_spacing() const noexcept { return spacing_; }
   /// (#samples x #convexity radii) signed convexity of the surface around each sample (geodesic_ball_convexity).
@@ -230,6 +238,9 @@ class blended_shape {
   [[nodiscard]] const std::vector<index_t>& features() const noexcept { return features_; }
   /// (#V x #features) distances to the feature points.
   [[nodiscard]] const matrix_x<Scalar>& feature_distances() const noexcept { return feature_table_; }
+  /// The same shape with the second feature set (blended_shape_options::alternative_feature_persistence: the
+  /// features without the low bumps), sharing everything else; nullptr when the shape has no such bump.
+  [[nodiscard]] const blended_shape* alternative() const noexcept { return alternative_.get(); }
   /// Interpolation of per-sample values to vertex v: sum_k weight(v, k) * value[index(v, k)].
   [[nodiscard]] const Eigen::Matrix<index_t, Eigen::Dynamic, Eigen::Dynamic>& interpolation_index() const noexcept {
     return interp_index_;
@@ -237,8 +248,9 @@ class blended_shape {
   [[nodiscard]] const matrix_x<Scalar>& interpolation_weight() const noexcept { return interp_weight_; }
   /// Geodesic (unit-area) distance from sample s to a surface point (barycentric blend of the corner distances).
   [[nodiscard]] Scalar sample_distance(index_t s, const surface_point<Scalar>& p) const {
-    return p.bary[0] * table_(mesh_.F(p.face, 0), s) + p.bary[1] * table_(mesh_.F(p.face, 1), s) +
-           p.bary[2] * table_(mesh_.F(p.face, 2), s);
+    const matrix_x<Scalar>& table = *table_;
+    return p.bary[0] * table(mesh_.F(p.face, 0), s) + p.bary[1] * table(mesh_.F(p.face, 1), s) +
+           p.bary[2] * table(mesh_.F(p.face, 2), s);
   }
   /// Vertex numbering: the input's vertex v is internal vertex internal_vertex(v) (no_index if a repair dropped
   /// it); internal vertex i is the input's original_vertex(i) (no_index if a repair added it).
@@ -250,23 +262,18 @@ class blended_shape {
   /// Bytes held on the heap (core/heap_bytes.hpp): what a cache of prepared shapes keeps per shape. Most of it
   /// is the sample distance table (#V x num_samples) and the flattening's split triangulation and trees.
   [[nodiscard]] std::size_t heap_bytes() const noexcept {
-    using shapestruct::heap_bytes;
-    return heap_bytes(mesh_) + flat_.heap_bytes() + (geo_ ? sizeof(*geo_) + geo_->heap_bytes() : 0) +
-           (cpq_ ? sizeof(*cpq_) + cpq_->heap_bytes() : 0) + heap_bytes(samples_) + heap_bytes(table_) +
-           heap_bytes(convexity_) + heap_bytes(agd_) + heap_bytes(features_) + heap_bytes(feature_table_) +
-           heap_bytes(interp_index_) + heap_bytes(interp_weight_) + heap_bytes(internal_of_) +
-           heap_bytes(original_of_) + heap_bytes(repairs_.holes_filled);
+    return own_heap_bytes(nullptr) + (alternative_ ? sizeof(blended_shape) + alternative_->own_heap_bytes(this) : 0);
   }
 
  private:
   triangle_mesh<Scalar> mesh_;
   Scalar scale_ = 1;
-  mid_edge_flattening<Scalar> flat_;
+  std::shared_ptr<const mid_edge_flattening<Scalar>> flat_ = std::make_shared<const mid_edge_flattening<Scalar>>();
   std::shared_ptr<dijkstra_geodesics<Scalar>> geo_;
   std::shared_ptr<closest_point_query<Scalar>> cpq_;
   std::vector<index_t> samples_;
   Scalar spacing_ = 1;
-  matrix_x<Scalar> table_;
+  std::shared_ptr<const matrix_x<Scalar>> table_ = std::make_shared<const matrix_x<Scalar>>();
   matrix_x<Scalar> convexity_;
   vector_x<Scalar> agd_;
   /// Adds the most central vertex, then geodesic farthest points, until there are `wanted` features (fewer only
@@ -286,8 +293,49 @@ class blended_shape {
     }
   }
 
+  /// Features from the chosen AGD maxima (strongest first; completed to min_features), their distance table and
+  /// the flattening, whose cut avoids them. `shared` is the flattening to keep when the automatic cut stays
+  /// where it is (the alternative feature set's case).
+  void place_features(std::vector<index_t> maxima, const blended_shape_options& options,
+                      const std::shared_ptr<const mid_edge_flattening<Scalar>>& shared = nullptr) {
+    if (static_cast<index_t>(maxima.size()) > options.max_features) maxima.resize(static_cast<std::size_t>(options.max_features));
+    agd_maxima_ = static_cast<index_t>(maxima.size());
+    const index_t wanted = std::min(options.min_features, options.max_features);
+    if (agd_maxima_ < wanted) complete_features(maxima, wanted);
+    features_ = std::move(maxima);
+    feature_table_ = geo_->distance_table(std::span<const index_t>(features_), options.threads);
+    // The flattening is built once, after the features, with its cut already chosen: the automatic cut is the
+    // largest face (the flattening's own rule), moved away from the features when it is too close to one.
+    mid_edge_flattening_options fo = options.flattening;
+    if (fo.cut_face == no_index && options.cut_clearance > 0) {
+      index_t largest = 0;
+      face_areas<Scalar>(mesh_.V, mesh_.F, validation_level::trust).maxCoeff(&largest);
+      fo.cut_face = detail::cut_face_away_from_features<Scalar>(mesh_.V, mesh_.F, largest, feature_table_, agd_,
+                                                                Scalar(options.cut_clearance));
+    }
+    if (shared && fo.cut_face == cut_face_) return;
+    cut_face_ = fo.cut_face;
+    flat_ = std::make_shared<const mid_edge_flattening<Scalar>>(mesh_.V, mesh_.F, fo, validation_level::trust);
+  }
+
+  /// Heap bytes of the members, without those shared with `base` (the shape this one is the alternative of).
+  [[nodiscard]] std::size_t own_heap_bytes(const blended_shape* base) const noexcept {
+    using shapestruct::heap_bytes;
+    std::size_t bytes = heap_bytes(mesh_) + heap_bytes(samples_) + heap_bytes(convexity_) + heap_bytes(agd_) +
+                        heap_bytes(features_) + heap_bytes(feature_table_) + heap_bytes(interp_index_) +
+                        heap_bytes(interp_weight_) + heap_bytes(internal_of_) + heap_bytes(original_of_) +
+                        heap_bytes(repairs_.holes_filled);
+    if (!base || flat_ != base->flat_) bytes += sizeof(*flat_) + flat_->heap_bytes();
+    if (!base || table_ != base->table_) bytes += sizeof(*table_) + heap_bytes(*table_);
+    if (geo_ && (!base || geo_ != base->geo_)) bytes += sizeof(*geo_) + geo_->heap_bytes();
+    if (cpq_ && (!base || cpq_ != base->cpq_)) bytes += sizeof(*cpq_) + cpq_->heap_bytes();
+    return bytes;
+  }
+
   std::vector<index_t> features_;
   index_t agd_maxima_ = 0;
+  index_t cut_face_ = no_index;
+  std::shared_ptr<const blended_shape> alternative_;
   matrix_x<Scalar> feature_table_;
   Eigen::Matrix<index_t, Eigen::Dynamic, Eigen::Dynamic> interp_index_;
   matrix_x<Scalar> interp_weight_;
