@@ -75,7 +75,7 @@ static int run(int argc, char** argv) {
   bool diagnose_groups = false;
   double eigenvalue_fraction = -1, feature_radius = -1;
   int min_features = -1;
-  double feature_persistence = -1, alternative_persistence = -1;
+  double feature_persistence = -1, alternative_persistence = -1, alternative_margin = -1;
   std::string selection;  // empty: the library default (blended_matcher_options::selection)
   int max_eigenvectors = -1, max_groups = -1;
   bool refine = true, check_refinement = true;
@@ -102,6 +102,7 @@ static int run(int argc, char** argv) {
     else if (a == "--min-features") min_features = std::stoi(next());
     else if (a == "--feature-persistence") feature_persistence = std::stod(next());
     else if (a == "--alternative-persistence") alternative_persistence = std::stod(next());
+    else if (a == "--alternative-margin") alternative_margin = std::stod(next());
     else if (a == "--selection") selection = next();
     else if (a == "--max-eigenvectors") max_eigenvectors = std::stoi(next());
     else if (a == "--max-groups") max_groups = std::stoi(next());
@@ -129,7 +130,7 @@ static int run(int argc, char** argv) {
       std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec|humans|animals --out DIR [--limit N] [--stride K] "
                    "[--offset O] [--threads T] [--groups]\n"
                    "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G] [--feature-radius R] [--min-features N]\n"
-                   "  [--feature-persistence P] [--alternative-persistence P] (0: one feature set)\n"
+                   "  [--feature-persistence P] [--alternative-persistence P] (0: one feature set) [--alternative-margin M]\n"
                    "  [--selection adaptive|confidence-distortion|confidence|area|area-confidence] (as `shapestruct match`; default: the library's)\n"
                    "  [--no-refine] [--no-refinement-check] [--zoomout-sizes k0,kmax,step] [--zoomout-samples N] [--zoomout-exact] [--zoomout-radius R]\n"
                    "  [--zoomout-basis lanczos|galerkin[,M[,S]]] (default galerkin,600,1)\n";
@@ -154,6 +155,7 @@ static int run(int argc, char** argv) {
   if (min_features >= 0) options.shape.min_features = min_features;
   if (feature_persistence >= 0) options.shape.min_feature_persistence = feature_persistence;
   if (alternative_persistence >= 0) options.shape.alternative_feature_persistence = alternative_persistence;
+  if (alternative_margin >= 0) options.alternative_distortion_margin = alternative_margin;
   if (selection == "area") options.selection = blended_selection::area_score;
   else if (selection == "confidence") options.selection = blended_selection::integrated_confidence;
   else if (selection == "area-confidence") options.selection = blended_selection::area_and_confidence_rank;

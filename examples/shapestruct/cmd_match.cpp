@@ -52,6 +52,7 @@ struct match_options {
   long long features = 10;
   long long min_features = -1;  // not given: the library's default, at most --features
   double feature_radius = blended_matcher_options{}.shape.feature_radius;
+  double alternative_persistence = blended_shape_options{}.alternative_feature_persistence;
   std::string selection = selection_name(blended_matcher_options{}.selection);
   long long max_maps = 10000;
   long long max_enumerated = 30000;
@@ -111,11 +112,12 @@ blended_shape<double> prepare_or_explain(const blended_matcher<>& matcher, const
   }
 }
 
-/// "5" when every feature is an AGD maximum, else "4 (2 AGD maxima)".
+/// "5" when every feature is an AGD maximum, else "4 (2 AGD maxima)"; "7, 5 without bumps" with a second set.
 std::string feature_count(const blended_shape<double>& shape) {
   std::string text = std::to_string(shape.features().size());
   if (static_cast<std::size_t>(shape.num_agd_maxima()) != shape.features().size())
     text += " (" + std::to_string(shape.num_agd_maxima()) + " AGD maxima)";
+  if (shape.alternative()) text += ", " + std::to_string(shape.alternative()->features().size()) + " without bumps";
   return text;
 }
 
@@ -150,6 +152,7 @@ int run_match(const match_options& m) {
   o.shape.max_features = m.features;
   if (m.min_features >= 0) o.shape.min_features = m.min_features;
   o.shape.feature_radius = m.feature_radius;
+  o.shape.alternative_feature_persistence = m.alternative_persistence;
   o.selection = selection_rule(m.selection);
   const long long max_enumerated = m.max_enumerated;
   const long long seed = m.seed;
@@ -218,6 +221,11 @@ int run_match(const match_options& m) {
     std::fprintf(stderr, "total %.3f s, %zu candidate maps, %zu blended maps, selected score %.4f\n",
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), res.candidates.size(),
                  res.blended.size(), res.blended[static_cast<std::size_t>(res.selected)].score);
+  if (verbose && (sa.alternative() || sb.alternative()))
+    std::fprintf(stderr, "kept the features %s: geodesic distortion %.4f against %.4f %s\n",
+                 res.alternative_features ? "without bumps" : "with every AGD maximum",
+                 res.blended[static_cast<std::size_t>(res.selected)].geodesic_distortion,
+                 res.other_features_distortion, res.alternative_features ? "with every maximum" : "without bumps");
   if (res.info != status::ok)
     std::fprintf(stderr, "warning: eigen-solver status %s; the map is from the last iterate\n", to_string(res.info));
 
@@ -297,6 +305,14 @@ command_fn setup_match(CLI::App& app) {
   app.add_option("--feature-radius", m->feature_radius,
                  "AGD maxima closer than R (units of sqrt(area)) are one feature (default 0.15)")
       ->type_name("R");
+  app.add_option("--alternative-persistence", m->alternative_persistence,
+                 "also match with the features whose AGD persistence is at least P (units of sqrt(area)):\n"
+                 "bumps on an extremity, a dog's eyes beside its head, are dropped; the map that distorts\n"
+                 "geodesic distances less is kept (default " +
+                     option_check_detail::number_text(blended_shape_options{}.alternative_feature_persistence) +
+                     "; 0 = every maximum only)")
+      ->type_name("P")
+      ->check(at_least(0.0));
   app.add_option("--selection", m->selection,
                  "how one blended map is chosen among the groups': confidence alone unless the most\n"
                  "confident map distorts geodesic distances clearly (then as confidence-distortion), the\n"

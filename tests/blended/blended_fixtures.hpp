@@ -36,6 +36,26 @@ inline triangle_mesh<double> armed_sphere(int level = 4, int arms = 5) {
   return m;
 }
 
+/// The five-armed creature with three small bumps side by side on its body (as a dog's eyes and mouth on its
+/// head): the highest is an AGD maximum of low persistence, the others are suppressed beside it.
+inline triangle_mesh<double> bumpy_creature() {
+  auto m = test::armed_sphere(4, 5);
+  const Eigen::Vector3d centres[3] = {Eigen::Vector3d(0.3, 0.6, 0.75).normalized(),
+                                      Eigen::Vector3d(0.6, 0.3, 0.75).normalized(),
+                                      Eigen::Vector3d(0.45, 0.45, 0.78).normalized()};
+  for (index_t v = 0; v < m.V.rows(); ++v) {
+    const Eigen::Vector3d p = m.V.row(v).transpose();
+    const Eigen::Vector3d n = p.normalized();
+    double bump = 0;
+    for (const auto& c : centres) {
+      const double angle = std::acos(std::min(1.0, n.dot(c)));
+      bump += 0.3 * std::exp(-angle * angle / (2 * 0.08 * 0.08));
+    }
+    m.V.row(v) = ((p.norm() + bump) * n).transpose();
+  }
+  return m;
+}
+
 /// A creature with an intrinsic 180-degree symmetry that is not an extrinsic one: a sphere with two equal arms
 /// along +-x and two unequal ones along +-z, a dome at +y and, at -y, the same cap reflected through the plane of
 /// its rim (a dimple). Reflecting a cap through its rim plane is an isometry, so the rotation (x, y, z) ->

@@ -91,6 +91,12 @@ struct blended_matcher_options {
   /// four-legged animals across species at 0.04-0.11). Swept on the five benchmark lists: lower thresholds
   /// flip SCAPE and cross-subject human pairs, higher ones give up the animals' gain (docs/blended_maps.md).
   double near_isometric_distortion = 0.065;
+  /// With two feature sets (blended_shape_options::alternative_feature_persistence) the second set's map is kept
+  /// only if its geodesic distortion is below (1 - this) times the full set's. The measure is read through the
+  /// nearest target sample, so maps that differ by a left-right flip of a near-isometric pair can differ by a few
+  /// percent either way: with no margin one TOSCA-to-SCAPE human pair took its flip at 0.969 times the distortion;
+  /// the head-to-tail swaps the second set undoes are at 0.65-0.82 (docs/blended_maps.md).
+  double alternative_distortion_margin = 0.05;
   /// Optional extrinsic tie-break: the area term of the selection is score - convexity_weight *
   /// convexity_mismatch (blended_candidate). Intrinsic measures cannot tell a map from its intrinsic 180-degree
   /// flip when both are near-isometric; the convexity mismatch (bumps must map to bumps) can, and weight 5 picks
@@ -228,8 +234,9 @@ class blended_matcher {
 
   /// Matches two prepared shapes; output maps use the input meshes' vertex numbering.
   /// When either shape has a second feature set (blended_shape::alternative), the pair is matched with both
-  /// sets up to the blended map, and the one whose selected blended map distorts geodesic distances less is
-  /// kept (ties: the full set) and refined; blended_match_result::alternative_features says which.
+  /// sets up to the blended map, and the second set's map is kept only if it distorts geodesic distances clearly
+  /// less (blended_matcher_options::alternative_distortion_margin); the kept map is then refined, and
+  /// blended_match_result::alternative_features says which it was.
   /// Complexity: dominated by the consistency matrix, O(pairs * samples * log F / threads).
   [[nodiscard]] blended_match_result<double> match(const blended_shape<double>& a,
                                                    const blended_shape<double>& b) const {
@@ -241,7 +248,8 @@ class blended_matcher {
       const double full = run.out.blended[static_cast<std::size_t>(run.out.selected)].geodesic_distortion;
       const double fewer = second.out.blended[static_cast<std::size_t>(second.out.selected)].geodesic_distortion;
       // A distortion that could not be measured (NaN) loses.
-      const bool take_second = fewer < full || (std::isnan(full) && !std::isnan(fewer));
+      const bool take_second =
+          fewer < (1 - options_.alternative_distortion_margin) * full || (std::isnan(full) && !std::isnan(fewer));
       // Timings: the full set's stages, then the alternative's, whichever is kept.
       std::vector<std::pair<std::string, double>> timings = std::move(run.out.timings);
       timings.insert(timings.end(), second.out.timings.begin(), second.out.timings.end());

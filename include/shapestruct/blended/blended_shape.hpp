@@ -187,7 +187,9 @@ class blended_shape {
       std::vector<index_t> order(static_cast<std::size_t>(S));
       std::iota(order.begin(), order.end(), index_t(0));
       std::partial_sort(order.begin(), order.begin() + K, order.end(),
-                        [&](index_t a, index_t b) { return table(v, a) < table(v, b) || (table(v, a) == table(v, b) && a < b); });
+                        [&](index_t a, index_t b) {
+                          return table(v, a) < table(v, b) || (table(v, a) == table(v, b) && a < b);
+                        });
       Scalar sum = 0;
       for (index_t k = 0; k < K; ++k) {
         const Scalar d = table(v, order[static_cast<std::size_t>(k)]) / spacing_;
@@ -298,7 +300,8 @@ class blended_shape {
   /// where it is (the alternative feature set's case).
   void place_features(std::vector<index_t> maxima, const blended_shape_options& options,
                       const std::shared_ptr<const mid_edge_flattening<Scalar>>& shared = nullptr) {
-    if (static_cast<index_t>(maxima.size()) > options.max_features) maxima.resize(static_cast<std::size_t>(options.max_features));
+    if (static_cast<index_t>(maxima.size()) > options.max_features)
+      maxima.resize(static_cast<std::size_t>(options.max_features));
     agd_maxima_ = static_cast<index_t>(maxima.size());
     const index_t wanted = std::min(options.min_features, options.max_features);
     if (agd_maxima_ < wanted) complete_features(maxima, wanted);
