@@ -307,8 +307,8 @@ command_fn setup_match(CLI::App& app) {
       ->type_name("R");
   app.add_option("--alternative-persistence", m->alternative_persistence,
                  "also match with the features whose AGD persistence is at least P (units of sqrt(area)):\n"
-                 "bumps on an extremity, a dog's eyes beside its head, are dropped; the map that distorts\n"
-                 "geodesic distances less is kept (default " +
+                 "bumps on an extremity, a dog's eyes beside its head, are dropped; that map is kept\n"
+                 "where it distorts geodesic distances at least 5 % less (default " +
                      option_check_detail::number_text(blended_shape_options{}.alternative_feature_persistence) +
                      "; 0 = every maximum only)")
       ->type_name("P")

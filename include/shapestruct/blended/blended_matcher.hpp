@@ -95,7 +95,8 @@ struct blended_matcher_options {
   /// only if its geodesic distortion is below (1 - this) times the full set's. The measure is read through the
   /// nearest target sample, so maps that differ by a left-right flip of a near-isometric pair can differ by a few
   /// percent either way: with no margin one TOSCA-to-SCAPE human pair took its flip at 0.969 times the distortion;
-  /// the head-to-tail swaps the second set undoes are at 0.65-0.82 (docs/blended_maps.md).
+  /// the head-to-tail swaps the second set undoes on animals and SHREC'07 are mostly at 0.65-0.82
+  /// (docs/blended_maps.md).
   double alternative_distortion_margin = 0.05;
   /// Optional extrinsic tie-break: the area term of the selection is score - convexity_weight *
   /// convexity_mismatch (blended_candidate). Intrinsic measures cannot tell a map from its intrinsic 180-degree

@@ -51,12 +51,13 @@ struct blended_shape_options {
   /// (docs/blended_maps.md).
   double min_feature_persistence = 0;
   /// A second feature set: the same maxima without those whose AGD persistence is below this (units of
-  /// sqrt(area)). blended_matcher matches with both sets and keeps the blended map that distorts geodesic
-  /// distances less. Bumps on an extremity (a dog's eyes and mouth) give near-duplicate triplet maps that
-  /// outvote the true ones in S~; without them the true group forms. Where small extremities are the features
-  /// that matter (a fish's fins, a horse's ears) the full set's map is the less distorted and is kept. Only shapes
-  /// that have such bumps get the second set (blended_shape::alternative). 0 = one feature set, as in the
-  /// chapter (the measurements: docs/blended_maps.md).
+  /// sqrt(area)). blended_matcher matches with both sets and keeps the second set's map where it distorts
+  /// geodesic distances clearly less (blended_matcher_options::alternative_distortion_margin). Bumps on an
+  /// extremity (a dog's eyes and mouth) give near-duplicate triplet maps that outvote the true ones in S~;
+  /// without them the true group forms. Where small extremities are the features that matter (a fish's fins,
+  /// a horse's ears) the full set's map is the less distorted and is kept. Only shapes that have such bumps get
+  /// the second set (blended_shape::alternative). 0 = one feature set, as in the chapter (the measurements:
+  /// docs/blended_maps.md).
   double alternative_feature_persistence = 0.08;
   /// Fewest feature points. A shape whose AGD has fewer maxima (SHREC'07 glasses 43-45: only the two temple tips)
   /// is completed with its most central vertex (least AGD) and then with geodesic farthest points from the
