@@ -100,6 +100,13 @@ struct tuning {
   extrinsic_alignment_options extrinsic;  ///< --sigma: its sigma_fraction
   /// --intrinsic-sigma: sigma_intrinsic(S) / sqrt(area(S)) of the intrinsic scores
   double intrinsic_sigma = intrinsic_alignment_options{}.sigma_fraction;
+  /// --both-feature-sets: intrinsic_alignment_options::both_feature_sets (every blended map of both feature
+  /// sets an alternative of the edge and a candidate of the consistent blended map)
+  bool both_feature_sets = false;
+  [[nodiscard]] intrinsic_alignment_options intrinsic() const {
+    return {.sigma_fraction = intrinsic_sigma, .both_feature_sets = both_feature_sets};
+  }
+  [[nodiscard]] std::string intrinsic_cache_suffix() const;
   /// --min-gain, --fuzzy-min-gain, --max-fuzzy-distortion, --fuzzy-min-distance
   consistent_blended_options consistent;
   /// --refined-duel (shrec): also score "consistent_refined", the blended maps' choice refined by ZoomOut against
@@ -135,6 +142,11 @@ std::string fmt(double x, int prec = 3) {
   char b[64];
   std::snprintf(b, sizeof b, "%.*f", prec, x);
   return b;
+}
+
+/// The intrinsic cache folders' suffix: alignments made with other settings are not read back.
+std::string tuning::intrinsic_cache_suffix() const {
+  return "_sigma" + fmt(intrinsic_sigma) + (both_feature_sets ? "_both_sets" : "");
 }
 
 /// The cache folder's mark of a non-default up axis (none for +y, so that older caches stay valid).
@@ -278,10 +290,10 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
     const double t_records = seconds_since(t0);
     for (const auto& s : col.skipped) std::cout << "  class " << cls << ": left out " << s.file.filename().string() << ": " << s.reason << "\n";
     intrinsic_aligner aligner(records, [&](index_t k) { return read_mesh(kept[std::size_t(k)]).mesh; },
-                            intrinsic_alignment_options{.sigma_fraction = knobs.intrinsic_sigma});
+                            knobs.intrinsic());
     fuzzy_collection_options fo;
     fo.threads = threads;
-    fo.cache_folder = out_dir / "cache" / ("shrec_class" + std::to_string(cls) + "_sigma" + fmt(knobs.intrinsic_sigma));
+    fo.cache_folder = out_dir / "cache" / ("shrec_class" + std::to_string(cls) + knobs.intrinsic_cache_suffix());
     apply(fo);
     const auto t1 = clock_type::now();
     const auto r = compute_fuzzy_correspondences(records, aligner, fo);
@@ -449,10 +461,10 @@ void run_intrinsic_collection(const std::vector<fs::path>& files, const std::str
   run.records_seconds = seconds_since(t0);
   const std::vector<fs::path>& kept = run.col.files;
   intrinsic_aligner aligner(run.col.records, [&](index_t k) { return read_mesh(kept[std::size_t(k)]).mesh; },
-                            intrinsic_alignment_options{.sigma_fraction = knobs.intrinsic_sigma});
+                            knobs.intrinsic());
   fuzzy_collection_options fo;
   fo.threads = threads;
-  fo.cache_folder = out_dir / "cache" / (name + "_pairs_sigma" + fmt(knobs.intrinsic_sigma));
+  fo.cache_folder = out_dir / "cache" / (name + "_pairs" + knobs.intrinsic_cache_suffix());
   apply(fo);
   const auto t1 = clock_type::now();
   const auto r = compute_fuzzy_correspondences(run.col.records, aligner, fo);
@@ -1064,6 +1076,7 @@ static int run(int argc, char** argv) {
     else if (a == "--axis-scales") knobs.extrinsic.axis_scales = true;
     else if (a == "--baseline-axis-scales") knobs.baseline_axis_scales = true;
     else if (a == "--intrinsic-sigma") knobs.intrinsic_sigma = std::stod(next());
+    else if (a == "--both-feature-sets") knobs.both_feature_sets = true;
     else if (a == "--min-gain") knobs.consistent.min_consistency_gain = std::stod(next());
     else if (a == "--fuzzy-min-gain") knobs.consistent.fuzzy_min_gain = std::stod(next());
     else if (a == "--max-fuzzy-distortion") knobs.consistent.max_fuzzy_distortion_ratio = std::stod(next());
@@ -1075,7 +1088,7 @@ static int run(int argc, char** argv) {
                    "[--count N] [--seed S] [--threads T]\n"
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--edges-per-shape M] [--no-baseline] [--weak-support F]\n"
                    "  [--orientation-margin F]\n"
-                   "  [--aligner extrinsic|truth] [--sigma F] [--up 0|1|2|-1] [--intrinsic-sigma F] [--min-gain F] [--fuzzy-min-gain F]\n"
+                   "  [--aligner extrinsic|truth] [--sigma F] [--up 0|1|2|-1] [--intrinsic-sigma F] [--both-feature-sets] [--min-gain F] [--fuzzy-min-gain F]\n"
                    "  [--max-fuzzy-distortion R] [--fuzzy-min-distance D] [--no-fuzzy-candidate] [--refined-duel]\n"
                    "  [--no-refine-axis-scales] [--baseline-axis-scales] [--axis-scales]\n";
       return 2;

@@ -89,7 +89,15 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
   if (consistent) {
     if (collection.mode != "intrinsic")
       throw cli::usage_error("--consistent-blended needs an intrinsic collection (this one is extrinsic)");
-    intrinsic_aligner aligner(records, [&files](index_t k) { return read_mesh(files[std::size_t(k)]).mesh; });
+    // The candidates the collection's alignments were made from (cache.json; one feature set when absent).
+    intrinsic_alignment_options io;
+    if (fs::is_regular_file(dir / "cache.json")) {
+      const auto cache = read_json_file((dir / "cache.json").string());
+      if (const auto* pairs = json_member(cache, "pairs"); pairs != nullptr)
+        if (const auto* both = json_member(*pairs, "both_feature_sets"); both != nullptr && both->is_boolean())
+          io.both_feature_sets = both->get<bool>();
+    }
+    intrinsic_aligner aligner(records, [&files](index_t k) { return read_mesh(files[std::size_t(k)]).mesh; }, io);
     const auto cb = make_consistent_blended_map(aligner, f, a, b,
                                                 {.min_consistency_gain = c.min_gain, .orientation = collection.orientation,
                                                  .fuzzy_candidate = !c.blended_only, .fuzzy_min_gain = c.fuzzy_min_gain,
@@ -144,14 +152,23 @@ class cache_settings {
   }
   /// Throws cli::usage_error when `part` was stored with other values; otherwise records `wanted` for it.
   void require(const std::string& part, const std::string& folder, const nlohmann::ordered_json& wanted) {
-    if (stored_.is_object() && stored_.contains(part) && stored_[part] != wanted)
-      for (const auto& [key, value] : wanted.items()) {
-        const auto& old = stored_[part].contains(key) ? stored_[part][key] : nlohmann::ordered_json();
-        if (old != value)
-          throw cli::usage_error((file_.parent_path() / folder).string() + " was made with " + key + " " + old.dump() +
-                                 "; this run asks for " + value.dump() + " (option " + flag_of(key) +
-                                 "). Use another output folder, or delete " + folder + "/ there to make it again");
-      }
+    if (stored_.is_object() && stored_.contains(part) && stored_[part] != wanted) {
+      const auto& stored = stored_[part];
+      auto differs = [&](const std::string& key, const nlohmann::ordered_json& old, const nlohmann::ordered_json& now) {
+        if (old == now) return;
+        const std::string made = old.is_null() ? " was made without " + key : " was made with " + key + " " + old.dump();
+        const std::string asked = now.is_null() ? "this run does not ask for it" : "this run asks for " + now.dump();
+        throw cli::usage_error((file_.parent_path() / folder).string() + made + "; " + asked + " (option " +
+                               flag_of(key) + "). Use another output folder, or delete " + folder +
+                               "/ there to make it again");
+      };
+      for (const auto& [key, value] : wanted.items())
+        differs(key, stored.contains(key) ? stored[key] : nlohmann::ordered_json(), value);
+      // A setting stored but not asked for now (an option left out this time).
+      if (stored.is_object())
+        for (const auto& [key, value] : stored.items())
+          if (!wanted.contains(key)) differs(key, value, nlohmann::ordered_json());
+    }
     if (!stored_.is_object()) stored_ = nlohmann::ordered_json::object();
     stored_[part] = wanted;
   }
@@ -194,6 +211,7 @@ class cache_settings {
   static std::string flag_of(const std::string& key) {
     if (key == "samples") return "--samples";
     if (key == "up") return "--up";
+    if (key == "both_feature_sets") return "--both-feature-sets";
     return "--mode";  // the sampling metric and the alignment mode both follow it
   }
   fs::path file_;
@@ -253,6 +271,7 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
   // 2. The pipeline, with the pairwise alignments cached in OUT/pairs.
   nlohmann::ordered_json alignment_settings{{"mode", intrinsic ? "intrinsic" : "extrinsic"}};
   if (!intrinsic) alignment_settings["up"] = o.up;
+  if (intrinsic && o.both_feature_sets) alignment_settings["both_feature_sets"] = true;  // absent: one set, as before
   cache.require("pairs", "pairs", alignment_settings);
   if (writer) cache.write();
   fuzzy_collection_options fo;
@@ -272,6 +291,7 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
     const auto& f = col.files;
     intrinsic_alignment_options io;
     io.cache_bytes = static_cast<std::size_t>(o.cache_memory_mb) << 20;
+    io.both_feature_sets = o.both_feature_sets;
     intrinsic_aligner aligner(col.records, [&f](index_t k) { return read_mesh(f[std::size_t(k)]).mesh; }, io);
     r = compute_fuzzy_correspondences(col.records, aligner, fo);
     preparations = aligner.preparations();
@@ -409,6 +429,10 @@ void add_fuzzy_run_options(CLI::App& app, fuzzy_cli_options& o, const std::strin
                           "prepares shapes again more often; the results are the same")
       ->type_name("MB")
       ->check(in_range(64LL, 1048576LL));  // 64 MB .. 1 TB
+  app.add_flag("--both-feature-sets", o.both_feature_sets,
+               prefix + "intrinsic mode: a shape with small bumps among its extremities is also\n"
+                        "matched without them, and every map of both matches is an alternative\n"
+                        "of the pair (slower for those pairs; off by default)");
 }
 
 }  // namespace shapestruct::cli

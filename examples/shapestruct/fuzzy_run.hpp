@@ -31,6 +31,7 @@ struct fuzzy_cli_options {
   double weak_support = 0.8;  ///< fuzzy_collection_options::weak_support_fraction (0 = the chapter's graph)
   bool alignments_in_memory = false;  ///< keep the alignments' scores in memory rather than re-reading OUT/pairs
   long long cache_memory_mb = 2048;   ///< intrinsic_alignment_options::cache_bytes, in MiB
+  bool both_feature_sets = false;     ///< intrinsic_alignment_options::both_feature_sets
   bool quiet = false;
   /// true (`shapestruct fuzzy`): collection.json holds "seconds" and iterations.tsv the seconds per step.
   /// false (`shapestruct analyze`): neither does, so the files are the same on every run; the times are

@@ -247,3 +247,56 @@ TEST_CASE("blended_matcher keeps the second feature set when its blended map dis
   CHECK(marked == static_cast<long>(full.timings.size()));
   CHECK(r.timings.size() == 2 * full.timings.size());
 }
+
+TEST_CASE("blended_matcher keep_both_feature_sets keeps every blended map of both sets and the rule's choice") {
+  blended_matcher_options o;
+  o.shape = small_options();
+  o.shape.num_samples = 128;
+  o.refine = false;
+  o.threads = 2;
+  blended_matcher_options one_set_options = o;
+  one_set_options.shape.alternative_feature_persistence = 0;
+  const blended_matcher<> one_set(one_set_options);
+  const auto source = test::bumpy_creature();
+  const auto target = test::armed_sphere(4, 6);
+  const auto full = one_set.match(one_set.prepare(source), one_set.prepare(target));
+  const blended_matcher<> matcher(o);
+  const auto a = matcher.prepare(source);
+  const auto b = matcher.prepare(target);
+  REQUIRE(a.alternative() != nullptr);
+  const auto fewer = matcher.match(*a.alternative(), b);
+
+  for (const double margin : {o.alternative_distortion_margin, 0.5}) {
+    CAPTURE(margin);
+    blended_matcher_options pooling = o;
+    pooling.keep_both_feature_sets = true;
+    pooling.alternative_distortion_margin = margin;
+    const auto kept = blended_matcher<>(pooling).match(a, b);
+    const auto single = [&] {
+      blended_matcher_options plain = pooling;
+      plain.keep_both_feature_sets = false;
+      return blended_matcher<>(plain).match(a, b);
+    }();
+    // The choice and its map are the ones the matcher makes without pooling.
+    CHECK(kept.alternative_features == single.alternative_features);
+    CHECK(same_map(kept.map, single.map));
+    const auto& chosen = kept.blended[static_cast<std::size_t>(kept.selected)];
+    CHECK(chosen.alternative_features == kept.alternative_features);
+    CHECK(chosen.geodesic_distortion == single.blended[static_cast<std::size_t>(single.selected)].geodesic_distortion);
+    // Every map of both runs, the full set's first, with candidate indices into the joined list.
+    REQUIRE(kept.blended.size() == full.blended.size() + fewer.blended.size());
+    REQUIRE(kept.candidates.size() == full.candidates.size() + fewer.candidates.size());
+    CHECK(kept.confidence.rows() == static_cast<index_t>(kept.candidates.size()));
+    CHECK(kept.confidence.bottomRows(fewer.confidence.rows()) == fewer.confidence);
+    const auto offset = static_cast<index_t>(full.candidates.size());
+    for (std::size_t g = 0; g < kept.blended.size(); ++g) {
+      const bool second = g >= full.blended.size();
+      const auto& original = second ? fewer.blended[g - full.blended.size()] : full.blended[g];
+      CHECK(kept.blended[g].alternative_features == second);
+      CHECK(kept.blended[g].geodesic_distortion == original.geodesic_distortion);
+      REQUIRE(kept.blended[g].maps.size() == original.maps.size());
+      for (std::size_t m = 0; m < original.maps.size(); ++m)
+        CHECK(kept.blended[g].maps[m] == original.maps[m] + (second ? offset : 0));
+    }
+  }
+}

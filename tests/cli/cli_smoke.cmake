@@ -125,6 +125,26 @@ foreach(f graph.txt fuzzy.bin samples.txt)
     message(FATAL_ERROR "fuzzy --cache-memory 64 wrote another ${f} than the default cache")
   endif()
 endforeach()
+# Both feature sets: recorded with the alignments, read back by fuzzy-map, and a folder made with one setting
+# refuses the other either way round.
+run_cli(0 out fuzzy ${WORK}/creatures -o ${WORK}/creatures_fuzzy_both --mode intrinsic --samples 48 --threads 2 --quiet
+        --both-feature-sets)
+file(READ ${WORK}/creatures_fuzzy_both/cache.json both_cache)
+if(NOT both_cache MATCHES "\"both_feature_sets\": *true")
+  message(FATAL_ERROR "fuzzy --both-feature-sets did not record the setting in cache.json:\n${both_cache}")
+endif()
+run_cli(0 out fuzzy-map ${WORK}/creatures_fuzzy_both ${creature_a_stem} ${creature_b_stem} -o ${WORK}/creatures_ab.map
+        --consistent-blended)
+if(NOT out MATCHES "chosen")
+  message(FATAL_ERROR "fuzzy-map --consistent-blended on a both-feature-sets collection says nothing:\n${out}")
+endif()
+file(REMOVE ${WORK}/creatures_ab.map)
+set(one_set "was made without both_feature_sets; this run asks for true \\(option --both-feature-sets\\)")
+run_cli_error("alignments made with one feature set" "${one_set}"
+              fuzzy ${WORK}/creatures -o ${WORK}/creatures_fuzzy --mode intrinsic --samples 48 --both-feature-sets)
+set(both_sets "was made with both_feature_sets true; this run does not ask for it \\(option --both-feature-sets\\)")
+run_cli_error("alignments made with both feature sets" "${both_sets}"
+              fuzzy ${WORK}/creatures -o ${WORK}/creatures_fuzzy_both --mode intrinsic --samples 48)
 run_cli_error("out of range" "--cache-memory: must be in 64..1048576, got 10"
               fuzzy ${WORK}/creatures -o ${WORK}/never --cache-memory 10)
 run_cli_error("option without the one it refines" "--blended-only requires --consistent-blended"

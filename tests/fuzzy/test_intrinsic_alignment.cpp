@@ -323,3 +323,39 @@ TEST_CASE("intrinsic_aligner keeps its prepared shapes within cache_bytes and al
   none.cache_bytes = 0;
   CHECK_THROWS_AS((void)intrinsic_aligner(c.records, load, none), invalid_input);
 }
+
+TEST_CASE("intrinsic_aligner with both_feature_sets offers every blended map of both feature sets") {
+  const std::vector<triangle_mesh<double>> meshes{test::bumpy_creature(), test::armed_sphere(4, 6)};
+  const spherical_harmonic_descriptor describe;
+  std::vector<shape_record> records;
+  for (std::size_t k = 0; k < meshes.size(); ++k)
+    records.push_back(make_shape_record(meshes[k], "shape" + std::to_string(k), describe, {.samples = 64, .surface_points = 256}));
+  intrinsic_alignment_options one_set;
+  one_set.matcher.shape.num_samples = 128;
+  intrinsic_alignment_options both = one_set;
+  both.both_feature_sets = true;
+  const auto load = [&](index_t k) { return meshes[std::size_t(k)]; };
+  const intrinsic_aligner single(records, load, one_set);
+  const intrinsic_aligner pooled(records, load, both);
+  CHECK(single.options().matcher.shape.alternative_feature_persistence == 0);
+  CHECK(pooled.options().matcher.shape.alternative_feature_persistence > 0);
+  REQUIRE(pooled.prepared_shape(0)->alternative() != nullptr);  // the bumps give the source a second set
+
+  const auto r_single = single.match(0, 1);
+  const auto r_pooled = pooled.match(0, 1);
+  REQUIRE(r_pooled.blended.size() > r_single.blended.size());
+  const pair_alignment a_single = single.align(0, 1);
+  const pair_alignment a_pooled = pooled.align(0, 1);
+  CHECK(a_single.alternatives.size() == r_single.blended.size());
+  REQUIRE(a_pooled.alternatives.size() == r_pooled.blended.size());
+  // The full set's maps come first and score as they do alone.
+  for (std::size_t k = 0; k < a_single.alternatives.size(); ++k) {
+    CHECK(a_pooled.alternatives[k].global_score == a_single.alternatives[k].global_score);
+    CHECK_FALSE(r_pooled.blended[k].alternative_features);
+  }
+  CHECK(r_pooled.blended.back().alternative_features);
+  // The preferred alternative is the map the matcher's distortion rule keeps.
+  REQUIRE(a_pooled.preferred != no_index);
+  CHECK(static_cast<index_t>(a_pooled.alternatives[std::size_t(a_pooled.preferred)].parameters.at(0)) == r_pooled.selected);
+  CHECK(r_pooled.blended[std::size_t(r_pooled.selected)].alternative_features == r_pooled.alternative_features);
+}

@@ -98,6 +98,11 @@ struct blended_matcher_options {
   /// the head-to-tail swaps the second set undoes on animals and SHREC'07 are mostly at 0.65-0.82
   /// (docs/blended_maps.md).
   double alternative_distortion_margin = 0.05;
+  /// With two feature sets, `blended` keeps the blended maps of both matches, the second set's after the full
+  /// set's (and `candidates` and `confidence` both sets' candidates, the second's after the first's), while
+  /// `selected` and `map` are the ones the distortion rule above keeps. For callers that choose among every map
+  /// themselves: the intrinsic aligner of a collection (intrinsic_alignment_options::both_feature_sets).
+  bool keep_both_feature_sets = false;
   /// Optional extrinsic tie-break: the area term of the selection is score - convexity_weight *
   /// convexity_mismatch (blended_candidate). Intrinsic measures cannot tell a map from its intrinsic 180-degree
   /// flip when both are near-isometric; the convexity mismatch (bumps must map to bumps) can, and weight 5 picks
@@ -146,6 +151,8 @@ struct blended_candidate {
   /// blended_selection::confidence_and_distortion_rank the sum of the ranks by confidence_integral and by
   /// geodesic_distortion (with blended_selection::distortion_adaptive either of the last two).
   index_t selection_rank = 0;
+  /// Its candidates pair the shapes' second feature sets (blended_shape::alternative), not the full ones.
+  bool alternative_features = false;
   /// The blended map (source vertices -> target surface points); empty for unselected groups unless
   /// blended_matcher_options::full_maps_for_all_groups (blended_matcher::blend_group rebuilds it).
   surface_map<Scalar> map;
@@ -254,7 +261,8 @@ class blended_matcher {
       // Timings: the full set's stages, then the alternative's, whichever is kept.
       std::vector<std::pair<std::string, double>> timings = std::move(run.out.timings);
       timings.insert(timings.end(), second.out.timings.begin(), second.out.timings.end());
-      if (take_second) run = std::move(second);
+      if (options_.keep_both_feature_sets) pool_feature_sets(run, second, take_second);
+      else if (take_second) run = std::move(second);
       run.out.alternative_features = take_second;
       run.out.other_features_distortion = take_second ? full : fewer;
       run.out.timings = std::move(timings);
@@ -349,6 +357,34 @@ class blended_matcher {
     stage("blending", t);
     run.internal = std::move(internal);
     return run;
+  }
+
+  /// blended_matcher_options::keep_both_feature_sets: `second`'s candidates and blended maps appended to
+  /// `run`'s (their candidate indices shifted), `selected` pointing into the joined list; the kept set's `map`,
+  /// eigenvalues, status and internal map (for the refiner).
+  static void pool_feature_sets(blended_run& run, blended_run& second, bool take_second) {
+    auto& out = run.out;
+    auto& other = second.out;
+    const auto offset = static_cast<index_t>(out.candidates.size());
+    const auto first_maps = static_cast<index_t>(out.blended.size());
+    for (auto& c : other.blended) {
+      for (index_t& m : c.maps) m += offset;
+      c.alternative_features = true;
+    }
+    out.candidates.insert(out.candidates.end(), std::make_move_iterator(other.candidates.begin()),
+                          std::make_move_iterator(other.candidates.end()));
+    // Both sets' confidences are taken at the source's samples, which the second set shares.
+    matrix_x<double> confidence(out.confidence.rows() + other.confidence.rows(), out.confidence.cols());
+    confidence << out.confidence, other.confidence;
+    out.confidence = std::move(confidence);
+    out.blended.insert(out.blended.end(), std::make_move_iterator(other.blended.begin()),
+                       std::make_move_iterator(other.blended.end()));
+    if (!take_second) return;
+    out.selected = first_maps + other.selected;
+    out.map = std::move(other.map);
+    out.eigenvalues = std::move(other.eigenvalues);
+    out.info = other.info;
+    run.internal = std::move(second.internal);
   }
 
   /// Keeps the options_.max_maps candidates with the largest sum_p c_i(p)^2 (ties: lower index), in their order.

@@ -54,6 +54,11 @@ struct intrinsic_alignment_options {
   /// (the chapter's). B is intrinsic and cannot tell a map from its symmetric flip; the matcher's selection
   /// (area, confidence and convexity ranks) often can. Off by default: on SHREC'07 it is 0.011 worse within 0.25 (glasses and pliers; docs/fuzzy.md).
   bool start_from_matcher_selection = false;
+  /// Shapes with bumps of low persistence (blended_shape_options::alternative_feature_persistence) are matched
+  /// with both feature sets, and every blended map of both is an alternative of the edge; the matcher's
+  /// distortion rule only decides the preferred one. Off by default: it doubles those pairs' matching
+  /// (measured in docs/fuzzy.md).
+  bool both_feature_sets = false;
 
   static blended_matcher_options unrefined() {
     blended_matcher_options o;
@@ -140,6 +145,11 @@ class intrinsic_aligner {
     options_.matcher.threads = 1;
     options_.matcher.full_maps_for_all_groups = true;
     options_.matcher.on_stage = {};
+    if (options_.both_feature_sets) {
+      auto& persistence = options_.matcher.shape.alternative_feature_persistence;
+      if (!(persistence > 0)) persistence = blended_shape_options{}.alternative_feature_persistence;
+      options_.matcher.keep_both_feature_sets = true;
+    }
     if (!(options_.sigma_fraction > 0) || options_.max_entries_per_row < 1 || options_.cache_shapes < 2 ||
         options_.cache_bytes == 0)
       throw invalid_input(input_error::bad_parameter, no_index,
