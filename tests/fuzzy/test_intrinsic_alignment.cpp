@@ -354,6 +354,7 @@ TEST_CASE("intrinsic_aligner with both_feature_sets offers every blended map of 
     CHECK_FALSE(r_pooled.blended[k].alternative_features);
   }
   CHECK(r_pooled.blended.back().alternative_features);
+  CHECK(a_pooled.initial == a_single.initial);  // the edge starts from the full set's best B, as with one set
   // The preferred alternative is the map the matcher's distortion rule keeps.
   REQUIRE(a_pooled.preferred != no_index);
   CHECK(static_cast<index_t>(a_pooled.alternatives[std::size_t(a_pooled.preferred)].parameters.at(0)) == r_pooled.selected);

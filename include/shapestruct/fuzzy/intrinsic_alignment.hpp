@@ -55,9 +55,10 @@ struct intrinsic_alignment_options {
   /// (area, confidence and convexity ranks) often can. Off by default: on SHREC'07 it is 0.011 worse within 0.25 (glasses and pliers; docs/fuzzy.md).
   bool start_from_matcher_selection = false;
   /// Shapes with bumps of low persistence (blended_shape_options::alternative_feature_persistence) are matched
-  /// with both feature sets, and every blended map of both is an alternative of the edge; the matcher's
-  /// distortion rule only decides the preferred one. Off by default: it doubles those pairs' matching
-  /// (measured in docs/fuzzy.md).
+  /// with both feature sets, and every blended map of both is an alternative of the edge. The edge starts from
+  /// the full set's map of the best B, as with one set, and the second set's maps compete through consistency;
+  /// the matcher's distortion rule decides the preferred one. Off by default: it doubles those pairs' matching
+  /// and lost on SHREC'07 (docs/fuzzy.md).
   bool both_feature_sets = false;
 
   static blended_matcher_options unrefined() {
@@ -240,12 +241,17 @@ class intrinsic_aligner {
     pair_alignment out;
     out.source = source;
     out.target = target;
+    std::vector<alignment_alternative> second_set;  // both_feature_sets: the second set's maps, after the others
     for (std::size_t g = 0; g < r.blended.size(); ++g) {
       if (r.blended[g].map.points.empty()) continue;
-      out.alternatives.push_back(alternative_of(a, b, rs, rt, r.blended[g].map));
-      out.alternatives.back().parameters = {double(g)};
+      auto& list = r.blended[g].alternative_features ? second_set : out.alternatives;
+      list.push_back(alternative_of(a, b, rs, rt, r.blended[g].map));
+      list.back().parameters = {double(g)};
     }
+    // The edge starts from the full set's maps, as with one set; the second set's compete through consistency.
     out.initial = best_global_alternative(out.alternatives);
+    out.alternatives.insert(out.alternatives.end(), std::make_move_iterator(second_set.begin()),
+                            std::make_move_iterator(second_set.end()));
     for (std::size_t k = 0; k < out.alternatives.size(); ++k)
       if (static_cast<index_t>(out.alternatives[k].parameters.at(0)) == r.selected)
         out.preferred = static_cast<index_t>(k);
