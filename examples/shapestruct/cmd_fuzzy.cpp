@@ -36,6 +36,7 @@ namespace {
 using namespace shapestruct;
 namespace fs = std::filesystem;
 using steady = std::chrono::steady_clock;
+using ojson = nlohmann::ordered_json;
 
 using cli::progress_line;
 
@@ -54,6 +55,15 @@ int run_fuzzy(const fuzzy_command_line& c) {
   if (files.empty()) throw cli::usage_error("no .off/.obj/.ply/.stl files in " + c.input);
   progress_line bar(o.quiet);
   return cli::run_fuzzy_folder(files, out, o, bar, c.input).exit_code;
+}
+
+/// The settings the folder's pairwise alignments were made with (`cache.json`'s "pairs"); empty for an older
+/// folder without them, whose readers then keep the defaults of that time.
+ojson stored_pair_settings(const fs::path& dir) {
+  if (!fs::is_regular_file(dir / "cache.json")) return ojson::object();
+  const ojson cache = read_json_file((dir / "cache.json").string());
+  const auto* pairs = json_member(cache, "pairs");
+  return pairs != nullptr && pairs->is_object() ? *pairs : ojson::object();
 }
 
 /// The command line of `shapestruct fuzzy-map`.
@@ -91,12 +101,9 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
       throw cli::usage_error("--consistent-blended needs an intrinsic collection (this one is extrinsic)");
     // The candidates the collection's alignments were made from (cache.json; one feature set when absent).
     intrinsic_alignment_options io;
-    if (fs::is_regular_file(dir / "cache.json")) {
-      const auto cache = read_json_file((dir / "cache.json").string());
-      if (const auto* pairs = json_member(cache, "pairs"); pairs != nullptr)
-        if (const auto* both = json_member(*pairs, "both_feature_sets"); both != nullptr && both->is_boolean())
-          io.both_feature_sets = both->get<bool>();
-    }
+    const ojson pairs = stored_pair_settings(dir);
+    if (const auto* both = json_member(pairs, "both_feature_sets"); both != nullptr && both->is_boolean())
+      io.both_feature_sets = both->get<bool>();
     intrinsic_aligner aligner(records, [&files](index_t k) { return read_mesh(files[std::size_t(k)]).mesh; }, io);
     const auto cb = make_consistent_blended_map(aligner, f, a, b,
                                                 {.min_consistency_gain = c.min_gain, .orientation = collection.orientation,
@@ -117,11 +124,8 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
                              "refines the fuzzy map there)");
     extrinsic_alignment_options eo;
     // The collection's up axis, as its alignments were made (cache.json; +y when an older folder lacks it).
-    if (fs::is_regular_file(dir / "cache.json")) {
-      const auto cache = read_json_file((dir / "cache.json").string());
-      if (const auto* pairs = json_member(cache, "pairs"); pairs != nullptr)
-        if (const auto* up = json_member(*pairs, "up"); up != nullptr && up->is_number_integer()) eo.up_axis = up->get<int>();
-    }
+    const ojson pairs = stored_pair_settings(dir);
+    if (const auto* up = json_member(pairs, "up"); up != nullptr && up->is_number_integer()) eo.up_axis = up->get<int>();
     // A scale per axis fits shapes of other proportions closely; it needs the upright frame (docs/fuzzy.md).
     eo.axis_scales = !c.no_axis_scales && eo.up_axis != no_up_axis;
     try {
@@ -360,7 +364,6 @@ fuzzy_run_report run_fuzzy_folder(const std::vector<std::filesystem::path>& file
            to_string(it.embedding_info) + "\n";
     io_detail::write_file_atomically(out_dir / "iterations.tsv", s);
   }
-  using ojson = nlohmann::ordered_json;
   auto shapes = ojson::array(), skipped = ojson::array();
   for (std::size_t k = 0; k < col.records.size(); ++k) {
     shapes.push_back(ojson::object({{"name", col.records[k].name},

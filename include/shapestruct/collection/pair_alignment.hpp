@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -41,7 +42,7 @@ struct pair_alignment {
 };
 
 /// Index of the alternative with the highest global score (ties: the lower index); 0 when there is none.
-[[nodiscard]] inline index_t best_global_alternative(const std::vector<alignment_alternative>& alternatives) {
+[[nodiscard]] inline index_t best_global_alternative(std::span<const alignment_alternative> alternatives) {
   index_t best = 0;
   for (std::size_t a = 1; a < alternatives.size(); ++a)
     if (alternatives[a].global_score > alternatives[static_cast<std::size_t>(best)].global_score)

@@ -15,6 +15,7 @@
 #include <mutex>
 #include <numeric>
 #include <set>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -241,17 +242,15 @@ class intrinsic_aligner {
     pair_alignment out;
     out.source = source;
     out.target = target;
-    std::vector<alignment_alternative> second_set;  // both_feature_sets: the second set's maps, after the others
+    std::size_t full_set_maps = 0;  // a pooled match lists the full feature set's maps before the second set's
     for (std::size_t g = 0; g < r.blended.size(); ++g) {
       if (r.blended[g].map.points.empty()) continue;
-      auto& list = r.blended[g].alternative_features ? second_set : out.alternatives;
-      list.push_back(alternative_of(a, b, rs, rt, r.blended[g].map));
-      list.back().parameters = {double(g)};
+      if (!r.blended[g].alternative_features) full_set_maps = out.alternatives.size() + 1;
+      out.alternatives.push_back(alternative_of(a, b, rs, rt, r.blended[g].map));
+      out.alternatives.back().parameters = {double(g)};
     }
     // The edge starts from the full set's maps, as with one set; the second set's compete through consistency.
-    out.initial = best_global_alternative(out.alternatives);
-    out.alternatives.insert(out.alternatives.end(), std::make_move_iterator(second_set.begin()),
-                            std::make_move_iterator(second_set.end()));
+    out.initial = best_global_alternative(std::span(out.alternatives).first(full_set_maps));
     for (std::size_t k = 0; k < out.alternatives.size(); ++k)
       if (static_cast<index_t>(out.alternatives[k].parameters.at(0)) == r.selected)
         out.preferred = static_cast<index_t>(k);
