@@ -125,7 +125,8 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
     extrinsic_alignment_options eo;
     // The collection's up axis, as its alignments were made (cache.json; +y when an older folder lacks it).
     const ojson pairs = stored_pair_settings(dir);
-    if (const auto* up = json_member(pairs, "up"); up != nullptr && up->is_number_integer()) eo.up_axis = up->get<int>();
+    if (const auto* up = json_member(pairs, "up"); up != nullptr && up->is_number_integer())
+      eo.up_axis = up->get<int>();
     // A scale per axis fits shapes of other proportions closely; it needs the upright frame (docs/fuzzy.md).
     eo.axis_scales = !c.no_axis_scales && eo.up_axis != no_up_axis;
     try {
