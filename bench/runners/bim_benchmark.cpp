@@ -178,8 +178,8 @@ static int run(int argc, char** argv) {
   std::ofstream groups_csv;
   if (diagnose_groups) {
     groups_csv.open(fs::path(out_dir) / (set + "_groups.csv"));
-    groups_csv << "source,target,group,maps,eigen_weight,score,confidence_integral,geodesic_distortion,convexity_mismatch,mean,mean_sym,"
-                  "selected\n";
+    groups_csv << "source,target,group,maps,eigen_weight,score,confidence_integral,geodesic_distortion,convexity_mismatch,"
+                  "mean,mean_sym,w025,w025_sym,points,selection_rank,selected\n";
   }
 
   std::ofstream csv(fs::path(out_dir) / (set + "_pairs.csv"));
