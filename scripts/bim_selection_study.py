@@ -73,6 +73,10 @@ def rank_sum(measures, tolerance=1.0):
     return rule
 
 
+def eigen_weight(g):
+    return value(g, "eigen_weight")
+
+
 def distortion_gated(threshold, inner):
     """blended_selection::distortion_adaptive: confidence alone unless the most confident map's distortion
     exceeds `threshold`, then `inner`."""
@@ -96,6 +100,7 @@ RULES = [
     (f"confidence, the rank sum above {t} distortion", distortion_gated(t, rank_sum(["confidence", "distortion"])))
     for t in (0.045, 0.05, 0.055, 0.06)
 ] + [
+    ("largest eigen-weight (ties: area)", lambda groups: max(groups, key=lambda g: (eigen_weight(g), area(g)))),
     ("best group (oracle)", lambda groups: min(groups, key=lambda g: value(g, "mean"))),
 ]
 

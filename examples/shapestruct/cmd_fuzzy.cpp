@@ -57,95 +57,6 @@ int run_fuzzy(const fuzzy_command_line& c) {
   return cli::run_fuzzy_folder(files, out, o, bar, c.input).exit_code;
 }
 
-/// The settings the folder's pairwise alignments were made with (`cache.json`'s "pairs"); empty for an older
-/// folder without them, whose readers then keep the defaults of that time.
-ojson stored_pair_settings(const fs::path& dir) {
-  if (!fs::is_regular_file(dir / "cache.json")) return ojson::object();
-  const ojson cache = read_json_file((dir / "cache.json").string());
-  const auto* pairs = json_member(cache, "pairs");
-  return pairs != nullptr && pairs->is_object() ? *pairs : ojson::object();
-}
-
-/// The command line of `shapestruct fuzzy-map`.
-struct fuzzy_map_command_line {
-  std::string folder, a, b, out;
-  bool consistent = false;
-  double min_gain = consistent_blended_options{}.min_consistency_gain;
-  double fuzzy_min_gain = consistent_blended_options{}.fuzzy_min_gain;
-  bool blended_only = false;
-  bool refined = false;
-  bool no_axis_scales = false;
-  long long threads = 0;
-};
-
-int run_fuzzy_map(const fuzzy_map_command_line& c) {
-  const std::string& out = c.out;
-  const bool consistent = c.consistent;
-  const std::vector<std::string> pos{c.folder, c.a, c.b};
-  const fs::path dir(pos[0]);
-  for (const char* needed : {"collection.json", "fuzzy.bin"})
-    if (!fs::exists(dir / needed))
-      throw cli::usage_error(std::string("'") + pos[0] + "' is not the output of `shapestruct fuzzy`: " + needed + " is missing");
-  const fuzzy_output collection = read_fuzzy_output(dir);
-  const auto& records = collection.records;
-  const auto& files = collection.files;
-  const fuzzy_correspondence& f = collection.fuzzy;
-  std::map<std::string, index_t> index_of;
-  for (index_t k = 0; k < collection.shapes(); ++k) index_of[records[std::size_t(k)].name] = k;
-  for (const auto& n : {pos[1], pos[2]})
-    if (!index_of.count(n)) throw cli::usage_error("shape '" + n + "' is not in the collection (see " + (dir / "collection.json").string() + ")");
-  const index_t a = index_of[pos[1]], b = index_of[pos[2]];
-  std::vector<index_t> map;
-  if (consistent) {
-    if (collection.mode != "intrinsic")
-      throw cli::usage_error("--consistent-blended needs an intrinsic collection (this one is extrinsic)");
-    // The candidates the collection's alignments were made from (cache.json; one feature set when absent).
-    intrinsic_alignment_options io;
-    const ojson pairs = stored_pair_settings(dir);
-    if (const auto* both = json_member(pairs, "both_feature_sets"); both != nullptr && both->is_boolean())
-      io.both_feature_sets = both->get<bool>();
-    intrinsic_aligner aligner(records, [&files](index_t k) { return read_mesh(files[std::size_t(k)]).mesh; }, io);
-    const auto cb = make_consistent_blended_map(aligner, f, a, b,
-                                                {.min_consistency_gain = c.min_gain, .orientation = collection.orientation,
-                                                 .fuzzy_candidate = !c.blended_only, .fuzzy_min_gain = c.fuzzy_min_gain,
-                                                 .threads = int(c.threads)});
-    map = cb.map.nearest;
-    if (cb.fuzzy_chosen)
-      std::fprintf(stderr, "fuzzy-map: the refined best fuzzy map chosen (consistency %.3g; of the %zu blended maps the "
-                   "matcher picks %ld, the most consistent is %ld)\n",
-                   cb.fuzzy_consistency, cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group));
-    else
-      std::fprintf(stderr, "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld, the most consistent is %ld%s)\n",
-                   long(cb.group), cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group),
-                   cb.opposite_orientation ? "; the two shapes sit in f the mirror way round, so the matcher's choice is kept" : "");
-  } else if (c.refined) {
-    if (collection.mode != "extrinsic")
-      throw cli::usage_error("--refined needs an extrinsic collection (this one is intrinsic: --consistent-blended "
-                             "refines the fuzzy map there)");
-    extrinsic_alignment_options eo;
-    // The collection's up axis, as its alignments were made (cache.json; +y when an older folder lacks it).
-    const ojson pairs = stored_pair_settings(dir);
-    if (const auto* up = json_member(pairs, "up"); up != nullptr && up->is_number_integer())
-      eo.up_axis = up->get<int>();
-    // A scale per axis fits shapes of other proportions closely; it needs the upright frame (docs/fuzzy.md).
-    eo.axis_scales = !c.no_axis_scales && eo.up_axis != no_up_axis;
-    try {
-      map = refined_fuzzy_vertex_map(f, records, a, b, read_mesh(files[std::size_t(a)]).mesh.V,
-                                     read_mesh(files[std::size_t(b)]).mesh.V, eo);
-    } catch (const invalid_input& e) {
-      if (e.reason() != input_error::empty) throw;
-      throw invalid_input(e.reason(), e.element(), std::string(e.what()) + ": fuzzy-map without --refined writes it");
-    }
-  } else {
-    const bool on_vertices = !records[std::size_t(b)].sample_vertex.empty() && records[std::size_t(b)].sample_vertex[0] != no_index;
-    const Eigen::Matrix<double, Eigen::Dynamic, 3> Vb =
-        on_vertices ? Eigen::Matrix<double, Eigen::Dynamic, 3>() : read_mesh(files[std::size_t(b)]).mesh.V;
-    map = best_fuzzy_vertex_map(f, records, a, b, Vb);
-  }
-  write_vertex_map(fs::path(out), std::span<const index_t>(map));
-  return 0;
-}
-
 /// OUT/cache.json records what the resume caches were made with: records/ (samples and their metric) and pairs/
 /// (alignment mode, up axis), and every shape file's fingerprint (size, content hash): the caches are keyed by
 /// file name, so an edited file would otherwise keep its old record and alignments. A rerun into the same folder with other settings would mix old records or
@@ -211,6 +122,12 @@ class cache_settings {
     }
   }
   void write() const { write_json_file(file_.string(), stored_); }
+  /// What was recorded for `part` ("records", "pairs"); an empty object when the file or the part is absent
+  /// (an older folder, whose readers then keep the defaults of that time).
+  [[nodiscard]] nlohmann::ordered_json stored(const std::string& part) const {
+    const auto* found = stored_.is_object() ? json_member(stored_, part) : nullptr;
+    return found != nullptr && found->is_object() ? *found : nlohmann::ordered_json::object();
+  }
 
  private:
   static std::string flag_of(const std::string& key) {
@@ -222,6 +139,86 @@ class cache_settings {
   fs::path file_;
   nlohmann::ordered_json stored_;
 };
+
+/// The command line of `shapestruct fuzzy-map`.
+struct fuzzy_map_command_line {
+  std::string folder, a, b, out;
+  bool consistent = false;
+  double min_gain = consistent_blended_options{}.min_consistency_gain;
+  double fuzzy_min_gain = consistent_blended_options{}.fuzzy_min_gain;
+  bool blended_only = false;
+  bool refined = false;
+  bool no_axis_scales = false;
+  long long threads = 0;
+};
+
+int run_fuzzy_map(const fuzzy_map_command_line& c) {
+  const std::string& out = c.out;
+  const bool consistent = c.consistent;
+  const std::vector<std::string> pos{c.folder, c.a, c.b};
+  const fs::path dir(pos[0]);
+  for (const char* needed : {"collection.json", "fuzzy.bin"})
+    if (!fs::exists(dir / needed))
+      throw cli::usage_error(std::string("'") + pos[0] + "' is not the output of `shapestruct fuzzy`: " + needed + " is missing");
+  const fuzzy_output collection = read_fuzzy_output(dir);
+  const auto& records = collection.records;
+  const auto& files = collection.files;
+  const fuzzy_correspondence& f = collection.fuzzy;
+  std::map<std::string, index_t> index_of;
+  for (index_t k = 0; k < collection.shapes(); ++k) index_of[records[std::size_t(k)].name] = k;
+  for (const auto& n : {pos[1], pos[2]})
+    if (!index_of.count(n)) throw cli::usage_error("shape '" + n + "' is not in the collection (see " + (dir / "collection.json").string() + ")");
+  const index_t a = index_of[pos[1]], b = index_of[pos[2]];
+  std::vector<index_t> map;
+  if (consistent) {
+    if (collection.mode != "intrinsic")
+      throw cli::usage_error("--consistent-blended needs an intrinsic collection (this one is extrinsic)");
+    // The candidates the collection's alignments were made from (cache.json; one feature set when absent).
+    intrinsic_alignment_options io;
+    const ojson pairs = cache_settings(dir / "cache.json").stored("pairs");
+    if (const auto* both = json_member(pairs, "both_feature_sets"); both != nullptr && both->is_boolean())
+      io.both_feature_sets = both->get<bool>();
+    intrinsic_aligner aligner(records, [&files](index_t k) { return read_mesh(files[std::size_t(k)]).mesh; }, io);
+    const auto cb = make_consistent_blended_map(aligner, f, a, b,
+                                                {.min_consistency_gain = c.min_gain, .orientation = collection.orientation,
+                                                 .fuzzy_candidate = !c.blended_only, .fuzzy_min_gain = c.fuzzy_min_gain,
+                                                 .threads = int(c.threads)});
+    map = cb.map.nearest;
+    if (cb.fuzzy_chosen)
+      std::fprintf(stderr, "fuzzy-map: the refined best fuzzy map chosen (consistency %.3g; of the %zu blended maps the "
+                   "matcher picks %ld, the most consistent is %ld)\n",
+                   cb.fuzzy_consistency, cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group));
+    else
+      std::fprintf(stderr, "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld, the most consistent is %ld%s)\n",
+                   long(cb.group), cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group),
+                   cb.opposite_orientation ? "; the two shapes sit in f the mirror way round, so the matcher's choice is kept" : "");
+  } else if (c.refined) {
+    if (collection.mode != "extrinsic")
+      throw cli::usage_error("--refined needs an extrinsic collection (this one is intrinsic: --consistent-blended "
+                             "refines the fuzzy map there)");
+    extrinsic_alignment_options eo;
+    // The collection's up axis, as its alignments were made (cache.json; +y when an older folder lacks it).
+    const ojson pairs = cache_settings(dir / "cache.json").stored("pairs");
+    if (const auto* up = json_member(pairs, "up"); up != nullptr && up->is_number_integer())
+      eo.up_axis = up->get<int>();
+    // A scale per axis fits shapes of other proportions closely; it needs the upright frame (docs/fuzzy.md).
+    eo.axis_scales = !c.no_axis_scales && eo.up_axis != no_up_axis;
+    try {
+      map = refined_fuzzy_vertex_map(f, records, a, b, read_mesh(files[std::size_t(a)]).mesh.V,
+                                     read_mesh(files[std::size_t(b)]).mesh.V, eo);
+    } catch (const invalid_input& e) {
+      if (e.reason() != input_error::empty) throw;
+      throw invalid_input(e.reason(), e.element(), std::string(e.what()) + ": fuzzy-map without --refined writes it");
+    }
+  } else {
+    const bool on_vertices = !records[std::size_t(b)].sample_vertex.empty() && records[std::size_t(b)].sample_vertex[0] != no_index;
+    const Eigen::Matrix<double, Eigen::Dynamic, 3> Vb =
+        on_vertices ? Eigen::Matrix<double, Eigen::Dynamic, 3>() : read_mesh(files[std::size_t(b)]).mesh.V;
+    map = best_fuzzy_vertex_map(f, records, a, b, Vb);
+  }
+  write_vertex_map(fs::path(out), std::span<const index_t>(map));
+  return 0;
+}
 
 }  // namespace
 
