@@ -79,6 +79,7 @@ static int run(int argc, char** argv) {
   std::string selection;  // empty: the library default (blended_matcher_options::selection)
   int max_eigenvectors = -1, max_groups = -1;
   bool refine = true, check_refinement = true;
+  double refinement_move_check = -1;
   zoomout_options zoomout;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -107,6 +108,7 @@ static int run(int argc, char** argv) {
     else if (a == "--max-eigenvectors") max_eigenvectors = std::stoi(next());
     else if (a == "--max-groups") max_groups = std::stoi(next());
     else if (a == "--no-refine") refine = false;
+    else if (a == "--refinement-move-check") refinement_move_check = std::stod(next());
     else if (a == "--zoomout-sizes") {  // k0,kmax,step
       const std::string v = next();
       if (std::sscanf(v.c_str(), "%td,%td,%td", &zoomout.initial_size, &zoomout.final_size, &zoomout.step) != 3) {
@@ -132,7 +134,8 @@ static int run(int argc, char** argv) {
                    "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G] [--feature-radius R] [--min-features N]\n"
                    "  [--feature-persistence P] [--alternative-persistence P] (0: one feature set) [--alternative-margin M]\n"
                    "  [--selection adaptive|confidence-distortion|confidence|area|area-confidence] (as `shapestruct match`; default: the library's)\n"
-                   "  [--no-refine] [--no-refinement-check] [--zoomout-sizes k0,kmax,step] [--zoomout-samples N] [--zoomout-exact] [--zoomout-radius R]\n"
+                   "  [--no-refine] [--no-refinement-check] [--refinement-move-check D] (0: off)\n"
+                   "  [--zoomout-sizes k0,kmax,step] [--zoomout-samples N] [--zoomout-exact] [--zoomout-radius R]\n"
                    "  [--zoomout-basis lanczos|galerkin[,M[,S]]] (default galerkin,600,1)\n";
       return 2;
     }
@@ -173,6 +176,7 @@ static int run(int argc, char** argv) {
   if (max_groups > 0) options.max_groups = max_groups;
   options.refine = refine;
   if (!check_refinement) options.max_refined_distortion_ratio = 0;
+  if (refinement_move_check >= 0) options.refinement_move_check = refinement_move_check;
   const blended_matcher<triplet_candidates, area_confidence, geodesic_consistency, zoomout_refiner> matcher(
       options, {}, {}, {}, zoomout_refiner(zoomout));
   std::ofstream groups_csv;
@@ -187,7 +191,7 @@ static int run(int argc, char** argv) {
          "time_confidence,time_consistency,time_blending,time_refinement,mean,w005,w010,w025,mean_flip,w025_flip,flipped,"
          "blended_mean,blended_w005,blended_w025,blended_distortion,refined_distortion,refinement_accepted,"
          "alternative_features,other_features_distortion,zoomout_mean,zoomout_w005,zoomout_w025,"
-         "stored_mean,stored_w025,stored_mean_flip,stored_w025_flip,stored_time,status\n";
+         "stored_mean,stored_w025,stored_mean_flip,stored_w025_flip,stored_time,moves_undone,status\n";
   std::ofstream errs(fs::path(out_dir) / (set + "_errors.tsv"));
   errs << "# method\tkind\terror\n";
   std::vector<double> all_raw, all_flip, st_raw, st_flip, times;
@@ -383,7 +387,7 @@ static int run(int argc, char** argv) {
           << "," << fmt(r.refined_distortion) << "," << (r.refinement_accepted ? 1 : 0) << ","
           << (r.alternative_features ? 1 : 0) << "," << fmt(r.other_features_distortion) << "," << fmt(s_zoomout.mean) << ","
           << fmt(s_zoomout.within_005) << "," << fmt(s_zoomout.within_025) << "," << fmt(st_mean) << "," << fmt(st_w025) << "," << fmt(st_mean_f) << ","
-          << fmt(st_w025_f) << "," << st_time << "," << status << "\n";
+          << fmt(st_w025_f) << "," << st_time << "," << r.refinement_moves_undone << "," << status << "\n";
       csv.flush();
       errs.flush();
       std::cerr << set << " " << name << ": mean " << fmt(s_raw.mean) << " (stored " << fmt(st_mean) << "), <=0.25 "
@@ -393,7 +397,7 @@ static int run(int argc, char** argv) {
       ++done;
     } catch (const std::exception& e) {
       ++failed;
-      csv << pr.source.name() << "," << pr.target.name() << ",,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,\"failed: " << e.what() << "\"\n";
+      csv << pr.source.name() << "," << pr.target.name() << ",,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,\"failed: " << e.what() << "\"\n";
       std::cerr << set << " " << name << ": FAILED " << e.what() << "\n";
     }
   }

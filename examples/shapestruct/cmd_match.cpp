@@ -64,6 +64,7 @@ struct match_options {
   long long max_hole_edges = 64;
   std::string refine = "zoomout";  // refinement of the blended map
   long long refine_basis = zoomout_options{}.final_size;
+  double refinement_move_check = blended_matcher_options{}.refinement_move_check;
   long long threads = 0;
   bool verbose = false;
 };
@@ -177,6 +178,7 @@ int run_match(const match_options& m) {
   cands.options.seed = static_cast<std::uint64_t>(seed);
   cands.options.pruning = pruning == "random" ? triplet_pruning::random : triplet_pruning::feature_distances;
   o.refine = m.refine == "zoomout";
+  o.refinement_move_check = m.refinement_move_check;
   zoomout_options zoomout;
   zoomout.final_size = m.refine_basis;
   zoomout.initial_size = std::min(zoomout.initial_size, zoomout.final_size);
@@ -226,6 +228,10 @@ int run_match(const match_options& m) {
                  res.alternative_features ? "without bumps" : "with every AGD maximum",
                  res.blended[static_cast<std::size_t>(res.selected)].geodesic_distortion,
                  res.other_features_distortion, res.alternative_features ? "with every maximum" : "without bumps");
+  if (verbose && o.refine)
+    std::fprintf(stderr, "refinement %s; the blended image put back at %ld vertices it moved %g or more\n",
+                 res.refinement_accepted ? "kept" : "undone (it distorts too much)", long(res.refinement_moves_undone),
+                 m.refinement_move_check);
   if (res.info != status::ok)
     std::fprintf(stderr, "warning: eigen-solver status %s; the map is from the last iterate\n", to_string(res.info));
 
@@ -355,6 +361,13 @@ command_fn setup_match(CLI::App& app) {
                      std::to_string(zoomout_options{}.final_size) + "; more is sharper and slower)")
       ->type_name("K")
       ->check(at_least(2LL));
+  app.add_option("--refinement-move-check", m->refinement_move_check,
+                 "where the refinement moves an image D or more (units of sqrt(target area)), put\n"
+                 "the blended image back if it agrees better with the rest of the map (default " +
+                     option_check_detail::number_text(blended_matcher_options{}.refinement_move_check) +
+                     "; 0 = keep every refined image)")
+      ->type_name("D")
+      ->check(at_least(0.0));
   app.add_option("--threads", m->threads, "worker threads, 0 = all cores (default 0)")->type_name("T")->check(at_least(0LL));
   app.add_flag("-v,--verbose", m->verbose, "progress and timings per stage on stderr");
   app.footer(

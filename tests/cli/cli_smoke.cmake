@@ -195,6 +195,9 @@ run_cli(0 out match ${first_mesh} ${second_mesh} -o ${WORK}/refined.map -v)
 if(NOT out MATCHES "refinement")
   message(FATAL_ERROR "match -v reports no refinement stage by default:\n${out}")
 endif()
+if(NOT out MATCHES "the blended image put back at [0-9]+ vertices it moved 0.1 or more")
+  message(FATAL_ERROR "match -v does not say where the move check put blended images back:\n${out}")
+endif()
 run_cli(0 out match ${first_mesh} ${second_mesh} -o ${WORK}/blended.map -v --refine none)
 if(out MATCHES "refinement")
   message(FATAL_ERROR "match --refine none still refines:\n${out}")
@@ -213,6 +216,8 @@ run_cli_error("bad --refine" "--refine: must be zoomout or none, got 'bogus'"
               match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --refine bogus)
 run_cli_error("bad --refine-basis" "--refine-basis: must be >= 2, got 1"
               match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --refine-basis 1)
+run_cli_error("bad --refinement-move-check" "--refinement-move-check: must be >= 0, got -0.1"
+              match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --refinement-move-check -0.1)
 run_cli_error("bad --selection" "--selection: must be adaptive, confidence-distortion, confidence, area or area-confidence, got 'bogus'"
               match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --selection bogus)
 run_cli_error("too few --features" "--features: must be >= 3, got 2"

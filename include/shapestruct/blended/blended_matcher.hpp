@@ -18,6 +18,7 @@
 
 #include "shapestruct/blended/area_confidence.hpp"
 #include "shapestruct/blended/blended_shape.hpp"
+#include "shapestruct/blended/refinement_move_check.hpp"
 #include "shapestruct/blended/sample_map_measures.hpp"
 #include "shapestruct/detail/parallel_for.hpp"
 #include "shapestruct/detail/side_by_side.hpp"
@@ -119,6 +120,15 @@ struct blended_matcher_options {
   /// SCAPE pairs (it lowered the error of 68), while on SHREC'07 human 8 -> 13, where it doubled the error at the
   /// feature points, it raised it 1.75x (docs/blended_maps.md). 0 = always keep the refinement.
   double max_refined_distortion_ratio = 1.5;
+  /// Where the refinement moves a source vertex's image at least this far (unit-area units, a lower bound of the
+  /// geodesic distance read from the target's sample table) from its blended image, the blended image is put back
+  /// if it agrees clearly better with the rest of the map (check_refinement_moves): ZoomOut now and then jumps to
+  /// another limb the blended map had right, and elsewhere repairs a region it had wrong (docs/blended_maps.md,
+  /// "Long moves of the refinement"). 0 = keep every refined image.
+  double refinement_move_check = 0.1;
+  /// ... and if the refined image distorts geodesic distances more than this many times as much as the blended one
+  /// against the rest of the map.
+  double refinement_move_distortion_ratio = 1.5;
   int threads = 0;  ///< std::threads, 0 = all cores; the result does not depend on it
   /// Progress callback (stage name, seconds spent in it); the library never prints.
   std::function<void(const std::string&, double)> on_stage{};
@@ -174,6 +184,9 @@ struct blended_match_result {
   surface_map<Scalar> refined_map;
   Scalar refined_distortion = 0;
   bool refinement_accepted = false;
+  /// Source vertices whose long refined move the blended image agreed with better, so it was put back
+  /// (blended_matcher_options::refinement_move_check); they are already so in refined_map.
+  index_t refinement_moves_undone = 0;
   /// Whether the map comes from the shapes' second feature sets (blended_shape::alternative; false when neither
   /// shape has one), and the geodesic distortion of the other set's selected blended map (NaN when there was
   /// only one set).
@@ -273,7 +286,10 @@ class blended_matcher {
       const blended_shape<double>& ra = out.alternative_features && a.alternative() ? *a.alternative() : a;
       const blended_shape<double>& rb = out.alternative_features && b.alternative() ? *b.alternative() : b;
       const auto& chosen = out.blended[static_cast<std::size_t>(out.selected)];
-      const surface_map<double> refined = refiner_.refine(ra.mesh(), rb.mesh(), run.internal, options_.threads);
+      surface_map<double> refined = refiner_.refine(ra.mesh(), rb.mesh(), run.internal, options_.threads);
+      if (options_.refinement_move_check > 0)
+        out.refinement_moves_undone = check_refinement_moves(
+            ra, rb, run.internal, refined, options_.refinement_move_check, options_.refinement_move_distortion_ratio);
       out.refined_distortion = shapestruct::geodesic_distortion(ra, rb, sample_images(ra, rb, refined.points));
       out.refined_map = to_input_numbering(ra, rb, refined);
       out.refinement_accepted =
