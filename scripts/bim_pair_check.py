@@ -10,9 +10,9 @@ source corresponds to the k-th of the target. With the names too (the cross-set 
 and TOSCA's .pid with their .info, "k: name" per line), a source point corresponds to the target point of the same
 name (trimmed, lower case), and "with flips" scores each image also against the target point's partner under the
 target class's symmetry (.sym.info: one orbit per line), and the pair keeps whichever of the two truths gives
-the lower mean error, as the runner does. The error of a point is the geodesic distance on the target between its image and its true image,
-divided by sqrt(area of the target) (the benchmark's scale); geodesics are shortest paths along the target's edges
-(Dijkstra, pure Python). Prints the mean error and the fraction within 0.25, as `run_bim_benchmark` does, so that
+the lower mean error, as the runner does. The error of a point is the geodesic distance on the target between
+its image and its true image, divided by sqrt(area of the target) (the benchmark's scale); geodesics are shortest
+paths along the target's edges (Dijkstra, pure Python). Prints the mean error and the fraction within 0.25, as `run_bim_benchmark` does, so that
 one of its figures can be checked by a second route.
 """
 import heapq
