@@ -113,6 +113,9 @@ struct tuning {
   /// the refined fuzzy map, the more consistent of the two (both then equally precise), and that refined blended
   /// choice alone ("blended_only_refined").
   bool refined_duel = false;
+  /// --refine-choice (shrec): also score "consistent_refined_checked", the consistent map with a chosen blended
+  /// map refined as the blended matcher refines its own (consistent_blended_options::refine_choice).
+  bool refine_choice = false;
   /// The refined fuzzy map fits a scale per axis, as `fuzzy-map --refined` does (extrinsic_alignment_options::
   /// axis_scales, upright collections); --no-refine-axis-scales: one scale, the similarity alone.
   bool refine_axis_scales = true;
@@ -357,6 +360,9 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
         blended_choice = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, blended_only);
       }
       if (knobs.consistent.fuzzy_candidate) score("consistent_blended_only", blended_choice->map.nearest);
+      if (knobs.refine_choice)
+        score("consistent_refined_checked",
+              cb.fuzzy_chosen ? cb.map.nearest : refined_blended_choice(aligner, ia, ib, pairwise, cb.group, threads).nearest);
       score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
       if (knobs.refined_duel) {
         const consistent_blended_map& choice = *blended_choice;
@@ -405,6 +411,7 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
               << cell("consistent_blended")
               << (r.orientation.empty() ? std::string() : " (without the orientation " + cell("consistent_unoriented") + ")")
               << (knobs.consistent.fuzzy_candidate ? " (among the blended maps only " + cell("consistent_blended_only") + ")" : std::string())
+              << (knobs.refine_choice ? " (the choice refined " + cell("consistent_refined_checked") + ")" : std::string())
               << ", best fuzzy " << cell("best_fuzzy") << ", stored original "
               << fmt(within(here["stored_original"].raw, 0.25)) << "\n";
   }
@@ -1082,6 +1089,7 @@ static int run(int argc, char** argv) {
     else if (a == "--max-fuzzy-distortion") knobs.consistent.max_fuzzy_distortion_ratio = std::stod(next());
     else if (a == "--fuzzy-min-distance") knobs.consistent.fuzzy_min_distance = std::stod(next());
     else if (a == "--refined-duel") knobs.refined_duel = true;
+    else if (a == "--refine-choice") knobs.refine_choice = true;
     else if (a == "--no-fuzzy-candidate") knobs.consistent.fuzzy_candidate = false;
     else {
       std::cerr << "usage: run_fuzzy_benchmark --set shrec|scape|humans|animals|chairs|airplanes|coseg|psb --out DIR [--data DIR] [--classes 1,4] "
@@ -1089,7 +1097,7 @@ static int run(int argc, char** argv) {
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--edges-per-shape M] [--no-baseline] [--weak-support F]\n"
                    "  [--orientation-margin F]\n"
                    "  [--aligner extrinsic|truth] [--sigma F] [--up 0|1|2|-1] [--intrinsic-sigma F] [--both-feature-sets] [--min-gain F] [--fuzzy-min-gain F]\n"
-                   "  [--max-fuzzy-distortion R] [--fuzzy-min-distance D] [--no-fuzzy-candidate] [--refined-duel]\n"
+                   "  [--max-fuzzy-distortion R] [--fuzzy-min-distance D] [--no-fuzzy-candidate] [--refined-duel] [--refine-choice]\n"
                    "  [--no-refine-axis-scales] [--baseline-axis-scales] [--axis-scales]\n";
       return 2;
     }

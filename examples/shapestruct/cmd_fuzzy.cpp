@@ -147,6 +147,7 @@ struct fuzzy_map_command_line {
   double min_gain = consistent_blended_options{}.min_consistency_gain;
   double fuzzy_min_gain = consistent_blended_options{}.fuzzy_min_gain;
   bool blended_only = false;
+  bool refine_choice = false;
   bool refined = false;
   bool no_axis_scales = false;
   long long threads = 0;
@@ -182,16 +183,19 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
     const auto cb = make_consistent_blended_map(aligner, f, a, b,
                                                 {.min_consistency_gain = c.min_gain, .orientation = collection.orientation,
                                                  .fuzzy_candidate = !c.blended_only, .fuzzy_min_gain = c.fuzzy_min_gain,
-                                                 .threads = int(c.threads)});
+                                                 .refine_choice = c.refine_choice, .threads = int(c.threads)});
     map = cb.map.nearest;
     if (cb.fuzzy_chosen)
       std::fprintf(stderr, "fuzzy-map: the refined best fuzzy map chosen (consistency %.3g; of the %zu blended maps the "
                    "matcher picks %ld, the most consistent is %ld)\n",
                    cb.fuzzy_consistency, cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group));
     else
-      std::fprintf(stderr, "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld, the most consistent is %ld%s)\n",
+      std::fprintf(stderr, "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld, the most consistent is %ld%s)%s\n",
                    long(cb.group), cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group),
-                   cb.opposite_orientation ? "; the two shapes sit in f the mirror way round, so the matcher's choice is kept" : "");
+                   cb.opposite_orientation ? "; the two shapes sit in f the mirror way round, so the matcher's choice is kept" : "",
+                   !c.refine_choice           ? ""
+                   : cb.refinement_accepted ? ", refined"
+                                            : ", its refinement undone (it distorted the map 1.5 times as much)");
   } else if (c.refined) {
     if (collection.mode != "extrinsic")
       throw cli::usage_error("--refined needs an extrinsic collection (this one is intrinsic: --consistent-blended "
@@ -485,6 +489,10 @@ cli::command_fn setup_fuzzy_map(CLI::App& app) {
       ->needs(consistent);  // alone it would be silently ignored
   auto* blended_only = app.add_flag("--blended-only", c->blended_only,
                "with --consistent-blended: choose among the blended maps only (by default\nthe best fuzzy map, refined by ZoomOut, competes with them)")
+      ->needs(consistent);
+  app.add_flag("--refine-choice", c->refine_choice,
+               "with --consistent-blended: refine a chosen blended map as `shapestruct match`\nrefines its own (ZoomOut, "
+               "long moves checked, undone if it distorts\n1.5 times as much)")
       ->needs(consistent);
   app.add_option("--fuzzy-min-gain", c->fuzzy_min_gain,
                  "with --consistent-blended: how much more consistent (a fraction) the refined\nfuzzy map must be than every blended map to be chosen (default 0: whenever\nit is the most consistent)")

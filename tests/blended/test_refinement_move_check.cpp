@@ -148,3 +148,43 @@ TEST_CASE("blended_matcher puts back the wrong long moves of its refiner, and no
   CHECK(checked.refinement_moves_undone == put_back);
   CHECK(checked.map.nearest == checked.refined_map.nearest);
 }
+
+namespace {
+/// `m` after a small closed tetrahedron far away, numbered first: keep_largest_component drops it, so the
+/// internal numbering of the shape is the input's shifted by four.
+triangle_mesh<double> after_a_stray_tetrahedron(const triangle_mesh<double>& m) {
+  triangle_mesh<double> out;
+  out.V.resize(m.V.rows() + 4, 3);
+  out.F.resize(m.F.rows() + 4, 3);
+  out.V.topRows(4) << 10, 0, 0, 10.1, 0, 0, 10, 0.1, 0, 10, 0, 0.1;
+  out.F.topRows(4) << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  out.V.bottomRows(m.V.rows()) = m.V;
+  out.F.bottomRows(m.F.rows()) = m.F.array() + 4;
+  return out;
+}
+}  // namespace
+
+TEST_CASE("refine_checked refines a blended map as match refines its selection, across a renumbering repair") {
+  const auto source = after_a_stray_tetrahedron(test::armed_sphere(3));
+  std::vector<index_t> perm;
+  const auto target = test::moved_and_permuted(test::armed_sphere(3), perm);
+  auto o = small_options();
+  o.shape.repairs.keep_largest_component = true;
+  const jumping_matcher matcher(o);
+  const auto a = matcher.prepare(source);
+  const auto b = matcher.prepare(target);
+  REQUIRE(a.internal_vertex(0) == no_index);
+  REQUIRE(a.internal_vertex(4) == 0);
+  const auto r = matcher.match(a, b);
+  REQUIRE(r.refinement_moves_undone > 0);  // the jumps are there to be checked
+  const auto again = matcher.refine_checked(a, b, r.blended[static_cast<std::size_t>(r.selected)]);
+  CHECK(again.map.nearest == r.refined_map.nearest);
+  CHECK(again.moves_undone == r.refinement_moves_undone);
+  CHECK(again.accepted == r.refinement_accepted);
+  CHECK(again.distortion == doctest::Approx(r.refined_distortion));
+  for (index_t v = 0; v < 4; ++v) CHECK_FALSE(again.map.points[static_cast<std::size_t>(v)].valid());
+
+  auto cut = r.blended[static_cast<std::size_t>(r.selected)];
+  cut.map.points.pop_back();
+  CHECK_THROWS_AS((void)matcher.refine_checked(a, b, cut), invalid_input);
+}

@@ -142,6 +142,36 @@ TEST_CASE("consistent blended map: the collection overrules the matcher only by 
     CHECK_THROWS_AS((void)make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.min_consistency_gain = bad}), invalid_input);
 }
 
+TEST_CASE("consistent blended map: refine_choice refines the chosen blended map as the matcher refines its own") {
+  const auto c = make_creatures(3);
+  auto options = flip_telling_options();
+  options.start_from_matcher_selection = true;  // so the collection agrees with the matcher on the true map
+  const intrinsic_aligner aligner(c.records, [&](index_t k) { return c.meshes[std::size_t(k)]; }, options);
+  const auto r = compute_fuzzy_correspondences(c.records, aligner, small_collection_options());
+  const auto match = aligner.match(0, 1);
+  const auto plain = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.fuzzy_candidate = false});
+  const auto refined =
+      make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.fuzzy_candidate = false, .refine_choice = true, .threads = 2});
+  REQUIRE(refined.group == plain.group);
+  auto matcher_options = aligner.options().matcher;
+  matcher_options.threads = 2;
+  const auto expected = blended_matcher<>(matcher_options)
+                            .refine_checked(*aligner.prepared_shape(0), *aligner.prepared_shape(1),
+                                            match.blended[std::size_t(plain.group)]);
+  CHECK(refined.refinement_accepted == expected.accepted);
+  CHECK(refined.map.nearest == (expected.accepted ? expected.map.nearest : plain.map.nearest));
+  // The pair is a moved copy: the refinement lands more vertices exactly on their true images than the blend.
+  const auto exact = [&](const std::vector<index_t>& image) {
+    index_t hits = 0;
+    for (std::size_t v = 0; v < image.size(); ++v) hits += image[v] == c.perm[v];
+    return hits;
+  };
+  MESSAGE("exact images: blended " << exact(plain.map.nearest) << ", refined " << exact(refined.map.nearest) << " of "
+                                   << c.perm.size());
+  CHECK(refined.refinement_accepted);
+  CHECK(exact(refined.map.nearest) > exact(plain.map.nearest));
+}
+
 TEST_CASE("consistent blended map: between shapes of opposite orientation the matcher's own choice is kept") {
   const auto c = make_creatures(3);
   // Started from B, which cannot tell the creature's front from its back: the collection may settle a copy mirrored.

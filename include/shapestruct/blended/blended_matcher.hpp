@@ -194,6 +194,14 @@ struct blended_match_result {
   Scalar other_features_distortion = std::numeric_limits<Scalar>::quiet_NaN();
 };
 
+/// The refinement of one blended map with the matcher's two checks (blended_matcher::refine_checked).
+struct checked_refinement {
+  surface_map<double> map;     ///< the refined map, long moves checked, in the input numbering
+  double distortion = 0;       ///< its geodesic distortion at the even samples
+  index_t moves_undone = 0;    ///< images put back by the check of long moves
+  bool accepted = false;       ///< the distortion check keeps it (otherwise the blended map stands)
+};
+
 /// Blended intrinsic maps (Kim, Lipman & Funkhouser 2011; dissertation ch. 3) with swappable policies:
 ///   Candidates(a, b)                    -> std::vector<candidate_map>          (triplet_candidates)
 ///   Confidence(a, b, maps, threads)     -> (#maps x #samples) c_i(p)           (area_confidence)
@@ -286,15 +294,11 @@ class blended_matcher {
       const blended_shape<double>& ra = out.alternative_features && a.alternative() ? *a.alternative() : a;
       const blended_shape<double>& rb = out.alternative_features && b.alternative() ? *b.alternative() : b;
       const auto& chosen = out.blended[static_cast<std::size_t>(out.selected)];
-      surface_map<double> refined = refiner_.refine(ra.mesh(), rb.mesh(), run.internal, options_.threads);
-      if (options_.refinement_move_check > 0)
-        out.refinement_moves_undone = check_refinement_moves(
-            ra, rb, run.internal, refined, options_.refinement_move_check, options_.refinement_move_distortion_ratio);
-      out.refined_distortion = shapestruct::geodesic_distortion(ra, rb, sample_images(ra, rb, refined.points));
-      out.refined_map = to_input_numbering(ra, rb, refined);
-      out.refinement_accepted =
-          !(options_.max_refined_distortion_ratio > 0) ||
-          out.refined_distortion <= options_.max_refined_distortion_ratio * chosen.geodesic_distortion;
+      checked_refinement refined = refine_internal(ra, rb, run.internal, chosen.geodesic_distortion);
+      out.refinement_moves_undone = refined.moves_undone;
+      out.refined_distortion = refined.distortion;
+      out.refined_map = std::move(refined.map);
+      out.refinement_accepted = refined.accepted;
       if (out.refinement_accepted) out.map = out.refined_map;
       const double s = seconds(t);
       out.timings.emplace_back("refinement", s);
@@ -303,7 +307,51 @@ class blended_matcher {
     return std::move(run.out);
   }
 
+  /// The refinement match() applies to its selected map, with both its checks (refinement_move_check,
+  /// max_refined_distortion_ratio), applied to any blended map of a match of a -> b, whatever options().refine
+  /// says: a caller that chooses among the groups by other means (a collection's consistency, say) refines its
+  /// choice as the matcher refines its own. Feature sets share the mesh and the samples, so either set's shapes
+  /// do. \throws as the Refiner; invalid_input (size_mismatch) if the map is not one of a's vertices onto b.
+  [[nodiscard]] checked_refinement refine_checked(const blended_shape<double>& a, const blended_shape<double>& b,
+                                                  const blended_candidate<double>& blended) const {
+    const auto& in = blended.map;
+    if (static_cast<index_t>(in.points.size()) != a.original_size())
+      throw invalid_input(input_error::size_mismatch, no_index,
+                          "blended_matcher::refine_checked: the map has " + std::to_string(in.points.size()) +
+                              " points, the source " + std::to_string(a.original_size()) + " vertices");
+    // Back to the internal numbering: a blended map's points already lie on b's internal faces
+    // (to_input_numbering renumbers only the source); a vertex a repair added has no image and is refined alone.
+    surface_map<double> internal;
+    const index_t n = a.mesh().V.rows();
+    internal.points.assign(static_cast<std::size_t>(n), surface_point<double>{});
+    internal.nearest.assign(static_cast<std::size_t>(n), no_index);
+    for (index_t i = 0; i < n; ++i) {
+      const index_t v = a.original_vertex(i);
+      if (v == no_index) continue;
+      const auto& p = in.points[static_cast<std::size_t>(v)];
+      if (!p.valid() || p.face >= b.mesh().F.rows()) continue;
+      internal.points[static_cast<std::size_t>(i)] = p;
+      internal.nearest[static_cast<std::size_t>(i)] = p.nearest_corner(b.mesh().F);
+    }
+    return refine_internal(a, b, internal, blended.geodesic_distortion);
+  }
+
  private:
+  /// Refiner(a, b, blended), its long moves checked, then judged against the blended map's distortion.
+  checked_refinement refine_internal(const blended_shape<double>& a, const blended_shape<double>& b,
+                                     const surface_map<double>& blended, double blended_distortion) const {
+    checked_refinement out;
+    surface_map<double> refined = refiner_.refine(a.mesh(), b.mesh(), blended, options_.threads);
+    if (options_.refinement_move_check > 0)
+      out.moves_undone = check_refinement_moves(a, b, blended, refined, options_.refinement_move_check,
+                                                options_.refinement_move_distortion_ratio);
+    out.distortion = shapestruct::geodesic_distortion(a, b, sample_images(a, b, refined.points));
+    out.map = to_input_numbering(a, b, refined);
+    out.accepted = !(options_.max_refined_distortion_ratio > 0) ||
+                   out.distortion <= options_.max_refined_distortion_ratio * blended_distortion;
+    return out;
+  }
+
   /// A match up to the selected blended map, and that map in the shapes' internal numbering (for the refiner).
   struct blended_run {
     blended_match_result<double> out;

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "shapestruct/blended/blended_matcher.hpp"
 #include "shapestruct/blended/sample_map_measures.hpp"
 #include "shapestruct/collection/shape_record.hpp"
 #include "shapestruct/core/concepts/map_refiner.hpp"
@@ -105,7 +106,11 @@ struct consistent_blended_options {
   /// blended map, built from the shapes' own features, is the more precise of them. 0 = no check (the default,
   /// likewise).
   double fuzzy_min_distance = 0;
-  /// Threads of the fuzzy candidate's refinement (0 = all cores).
+  /// A chosen blended map is refined as the blended matcher refines its own selection (ZoomOut, its long moves
+  /// checked, kept unless it distorts much more: blended_matcher::refine_checked). The fuzzy candidate is refined
+  /// already. Off by default (measured in docs/fuzzy.md, "The choice refined").
+  bool refine_choice = false;
+  /// Threads of the refinements (0 = all cores).
   int threads = 0;
 };
 
@@ -129,7 +134,26 @@ struct consistent_blended_map {
   /// Geodesic distortion of the most consistent blended map (blended_candidate::geodesic_distortion), or -1 when
   /// the match has none.
   double most_consistent_distortion = -1;
+  /// With consistent_blended_options::refine_choice: the chosen blended map's refinement was kept.
+  bool refinement_accepted = false;
 };
+
+/// The blended map `group` of r (a match of a -> b by `aligner`) refined as the blended matcher refines its own
+/// selection (blended_matcher::refine_checked with the aligner's matcher options), or the blended map itself where
+/// the refinement's distortion check rejects it. `accepted` (optional) says which.
+/// \throws as blended_matcher::refine_checked.
+[[nodiscard]] inline surface_map<double> refined_blended_choice(const intrinsic_aligner& aligner, index_t a, index_t b,
+                                                                const blended_match_result<double>& r, index_t group,
+                                                                int threads, bool* accepted = nullptr) {
+  const auto& chosen = r.blended.at(std::size_t(group));
+  blended_matcher_options o = aligner.options().matcher;
+  o.threads = threads;
+  const auto shape_a = aligner.prepared_shape(a);
+  const auto shape_b = aligner.prepared_shape(b);
+  checked_refinement refined = blended_matcher<>(o).refine_checked(*shape_a, *shape_b, chosen);
+  if (accepted) *accepted = refined.accepted;
+  return refined.accepted ? std::move(refined.map) : chosen.map;
+}
 
 /// The consistent blended map of shapes a -> b chosen among the blended maps of `r` (and the refined fuzzy map),
 /// `r` a match of a -> b by `aligner` (intrinsic_aligner::match), so a caller that also wants the pairwise map
@@ -203,7 +227,9 @@ struct consistent_blended_map {
   } else {
     out.group = out.most_consistent_group;
   }
-  out.map = r.blended[std::size_t(out.group)].map;
+  out.map = options.refine_choice
+                ? refined_blended_choice(aligner, a, b, r, out.group, options.threads, &out.refinement_accepted)
+                : r.blended[std::size_t(out.group)].map;
   return out;
 }
 
