@@ -113,7 +113,7 @@ struct tuning {
   /// the refined fuzzy map, the more consistent of the two (both then equally precise), and that refined blended
   /// choice alone ("blended_only_refined").
   bool refined_duel = false;
-  /// --refine-choice (shrec): also score "consistent_refined_checked", the consistent map with a chosen blended
+  /// --refine-choice (shrec, scape, humans, animals): also score "consistent_refined_checked", the consistent map with a chosen blended
   /// map refined as the blended matcher refines its own (consistent_blended_options::refine_choice).
   bool refine_choice = false;
   /// The refined fuzzy map fits a scale per axis, as `fuzzy-map --refined` does (extrinsic_alignment_options::
@@ -520,6 +520,9 @@ void score_list_pair(intrinsic_aligner& aligner, const fuzzy_collection_result& 
     blended_only.fuzzy_candidate = false;
     score("consistent_blended_only", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, blended_only).map.nearest);
   }
+  if (knobs.refine_choice)
+    score("consistent_refined_checked",
+          cb.fuzzy_chosen ? cb.map.nearest : refined_blended_choice(aligner, ia, ib, pairwise, cb.group, threads).nearest);
   score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
   if (fs::exists(stored)) {
     const auto blocks = read_bim_result(stored.string());
