@@ -113,8 +113,9 @@ struct tuning {
   /// the refined fuzzy map, the more consistent of the two (both then equally precise), and that refined blended
   /// choice alone ("blended_only_refined").
   bool refined_duel = false;
-  /// --refine-choice (shrec, scape, humans, animals): also score "consistent_refined_checked", the consistent map with a chosen blended
-  /// map refined as the blended matcher refines its own (consistent_blended_options::refine_choice).
+  /// --refine-choice (shrec, scape, humans, animals): also score "consistent_refined_checked", the consistent map
+  /// with a chosen blended map refined as the blended matcher refines its own (consistent_blended_options::
+  /// refine_choice).
   bool refine_choice = false;
   /// The refined fuzzy map fits a scale per axis, as `fuzzy-map --refined` does (extrinsic_alignment_options::
   /// axis_scales, upright collections); --no-refine-axis-scales: one scale, the similarity alone.
@@ -362,7 +363,8 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
       if (knobs.consistent.fuzzy_candidate) score("consistent_blended_only", blended_choice->map.nearest);
       if (knobs.refine_choice)
         score("consistent_refined_checked",
-              cb.fuzzy_chosen ? cb.map.nearest : refined_blended_choice(aligner, ia, ib, pairwise, cb.group, threads).nearest);
+              cb.fuzzy_chosen ? cb.map.nearest
+                              : refined_blended_choice(aligner, ia, ib, pairwise, cb.group, threads).nearest);
       score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
       if (knobs.refined_duel) {
         const consistent_blended_map& choice = *blended_choice;
@@ -411,7 +413,8 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
               << cell("consistent_blended")
               << (r.orientation.empty() ? std::string() : " (without the orientation " + cell("consistent_unoriented") + ")")
               << (knobs.consistent.fuzzy_candidate ? " (among the blended maps only " + cell("consistent_blended_only") + ")" : std::string())
-              << (knobs.refine_choice ? " (the choice refined " + cell("consistent_refined_checked") + ")" : std::string())
+              << (knobs.refine_choice ? " (the choice refined " + cell("consistent_refined_checked") + ")"
+                                      : std::string())
               << ", best fuzzy " << cell("best_fuzzy") << ", stored original "
               << fmt(within(here["stored_original"].raw, 0.25)) << "\n";
   }
@@ -522,7 +525,8 @@ void score_list_pair(intrinsic_aligner& aligner, const fuzzy_collection_result& 
   }
   if (knobs.refine_choice)
     score("consistent_refined_checked",
-          cb.fuzzy_chosen ? cb.map.nearest : refined_blended_choice(aligner, ia, ib, pairwise, cb.group, threads).nearest);
+          cb.fuzzy_chosen ? cb.map.nearest
+                          : refined_blended_choice(aligner, ia, ib, pairwise, cb.group, threads).nearest);
   score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
   if (fs::exists(stored)) {
     const auto blocks = read_bim_result(stored.string());
@@ -1100,7 +1104,8 @@ static int run(int argc, char** argv) {
                    "  [--time t] [--dims d] [--iterations I] [--samples K] [--edges-per-shape M] [--no-baseline] [--weak-support F]\n"
                    "  [--orientation-margin F]\n"
                    "  [--aligner extrinsic|truth] [--sigma F] [--up 0|1|2|-1] [--intrinsic-sigma F] [--both-feature-sets] [--min-gain F] [--fuzzy-min-gain F]\n"
-                   "  [--max-fuzzy-distortion R] [--fuzzy-min-distance D] [--no-fuzzy-candidate] [--refined-duel] [--refine-choice]\n"
+                   "  [--max-fuzzy-distortion R] [--fuzzy-min-distance D] [--no-fuzzy-candidate] [--refined-duel]\n"
+                   "  [--refine-choice]\n"
                    "  [--no-refine-axis-scales] [--baseline-axis-scales] [--axis-scales]\n";
       return 2;
     }

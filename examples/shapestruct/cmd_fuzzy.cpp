@@ -190,9 +190,13 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
                    "matcher picks %ld, the most consistent is %ld)\n",
                    cb.fuzzy_consistency, cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group));
     else
-      std::fprintf(stderr, "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld, the most consistent is %ld%s)%s\n",
+      std::fprintf(stderr,
+                   "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld, the most consistent is "
+                   "%ld%s)%s\n",
                    long(cb.group), cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group),
-                   cb.opposite_orientation ? "; the two shapes sit in f the mirror way round, so the matcher's choice is kept" : "",
+                   cb.opposite_orientation
+                       ? "; the two shapes sit in f the mirror way round, so the matcher's choice is kept"
+                       : "",
                    !c.refine_choice           ? ""
                    : cb.refinement_accepted ? ", refined"
                                             : ", its refinement undone (it distorted the map 1.5 times as much)");
@@ -491,8 +495,8 @@ cli::command_fn setup_fuzzy_map(CLI::App& app) {
                "with --consistent-blended: choose among the blended maps only (by default\nthe best fuzzy map, refined by ZoomOut, competes with them)")
       ->needs(consistent);
   app.add_flag("--refine-choice", c->refine_choice,
-               "with --consistent-blended: refine a chosen blended map as `shapestruct match`\nrefines its own (ZoomOut, "
-               "long moves checked, undone if it distorts\n1.5 times as much)")
+               "with --consistent-blended: refine a chosen blended map as `shapestruct match`\n"
+               "refines its own (ZoomOut, long moves checked, undone if it distorts\n1.5 times as much)")
       ->needs(consistent);
   app.add_option("--fuzzy-min-gain", c->fuzzy_min_gain,
                  "with --consistent-blended: how much more consistent (a fraction) the refined\nfuzzy map must be than every blended map to be chosen (default 0: whenever\nit is the most consistent)")

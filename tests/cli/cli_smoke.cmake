@@ -153,7 +153,8 @@ run_cli_error("out of range" "--cache-memory: must be in 64..1048576, got 10"
 run_cli_error("option without the one it refines" "--blended-only requires --consistent-blended"
               fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/never.map --blended-only)
 run_cli_error("option without the one it refines" "--refine-choice requires --consistent-blended"
-              fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/never.map --refine-choice)
+              fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/never.map
+              --refine-choice)
 run_cli_error("--refined on an intrinsic collection" "--refined needs an extrinsic collection"
               fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/never.map --refined)
 run_cli_error("contradicting options" "--blended-only excludes --fuzzy-min-gain"

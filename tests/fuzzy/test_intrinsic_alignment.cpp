@@ -150,8 +150,8 @@ TEST_CASE("consistent blended map: refine_choice refines the chosen blended map 
   const auto r = compute_fuzzy_correspondences(c.records, aligner, small_collection_options());
   const auto match = aligner.match(0, 1);
   const auto plain = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.fuzzy_candidate = false});
-  const auto refined =
-      make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.fuzzy_candidate = false, .refine_choice = true, .threads = 2});
+  const auto refined = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match,
+                                                   {.fuzzy_candidate = false, .refine_choice = true, .threads = 2});
   REQUIRE(refined.group == plain.group);
   auto matcher_options = aligner.options().matcher;
   matcher_options.threads = 2;
