@@ -255,6 +255,20 @@ void write_choice(std::ostream& out, const std::string& pair_columns, const cons
       << fmt(cb.most_consistent_distortion, 5) << "," << fmt(cb.fuzzy_distance, 5) << "\n";
 }
 
+/// The consistent map with a chosen blended map refined (refined_blended_choice); one line on stdout says how much
+/// the refinement changed the map's geodesic distortion and whether it was kept, so other limits can be studied.
+std::vector<index_t> refined_choice(const intrinsic_aligner& aligner, index_t ia, index_t ib,
+                                    const blended_match_result<double>& pairwise, const consistent_blended_map& cb,
+                                    const std::string& a, const std::string& b, int threads) {
+  if (cb.fuzzy_chosen) return cb.map.nearest;
+  bool accepted = false;
+  double ratio = -1;
+  auto map = refined_blended_choice(aligner, ia, ib, pairwise, cb.group, threads, &accepted, &ratio);
+  std::cout << "  refinement " << a << " -> " << b << ": group " << cb.group << ", distortion ratio " << fmt(ratio, 4)
+            << (accepted ? ", kept\n" : ", undone\n");
+  return std::move(map.nearest);
+}
+
 // ---------------------------------------------------------------------------------------------- SHREC'07
 int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& classes_arg, int threads) {
   const auto pairs = read_bim_query((data / "Results" / "Corr_SHREC.query").string());
@@ -362,9 +376,7 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
       }
       if (knobs.consistent.fuzzy_candidate) score("consistent_blended_only", blended_choice->map.nearest);
       if (knobs.refine_choice)
-        score("consistent_refined_checked",
-              cb.fuzzy_chosen ? cb.map.nearest
-                              : refined_blended_choice(aligner, ia, ib, pairwise, cb.group, threads).nearest);
+        score("consistent_refined_checked", refined_choice(aligner, ia, ib, pairwise, cb, a, b, threads));
       score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
       if (knobs.refined_duel) {
         const consistent_blended_map& choice = *blended_choice;
@@ -524,9 +536,7 @@ void score_list_pair(intrinsic_aligner& aligner, const fuzzy_collection_result& 
     score("consistent_blended_only", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, blended_only).map.nearest);
   }
   if (knobs.refine_choice)
-    score("consistent_refined_checked",
-          cb.fuzzy_chosen ? cb.map.nearest
-                          : refined_blended_choice(aligner, ia, ib, pairwise, cb.group, threads).nearest);
+    score("consistent_refined_checked", refined_choice(aligner, ia, ib, pairwise, cb, a, b, threads));
   score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
   if (fs::exists(stored)) {
     const auto blocks = read_bim_result(stored.string());

@@ -189,7 +189,13 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
       std::fprintf(stderr, "fuzzy-map: the refined best fuzzy map chosen (consistency %.3g; of the %zu blended maps the "
                    "matcher picks %ld, the most consistent is %ld)\n",
                    cb.fuzzy_consistency, cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group));
-    else
+    else {
+      char refinement[160] = "";
+      if (c.refine_choice)
+        std::snprintf(refinement, sizeof refinement,
+                      cb.refinement_accepted ? ", refined (its geodesic distortion x%.3g)"
+                                             : ", its refinement undone (it multiplied the geodesic distortion by %.3g)",
+                      cb.refinement_distortion_ratio);
       std::fprintf(stderr,
                    "fuzzy-map: blended map %ld of %zu chosen (the matcher alone picks %ld, the most consistent is "
                    "%ld%s)%s\n",
@@ -197,9 +203,8 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
                    cb.opposite_orientation
                        ? "; the two shapes sit in f the mirror way round, so the matcher's choice is kept"
                        : "",
-                   !c.refine_choice           ? ""
-                   : cb.refinement_accepted ? ", refined"
-                                            : ", its refinement undone (it distorted the map 1.5 times as much)");
+                   refinement);
+    }
   } else if (c.refined) {
     if (collection.mode != "extrinsic")
       throw cli::usage_error("--refined needs an extrinsic collection (this one is intrinsic: --consistent-blended "

@@ -160,6 +160,9 @@ TEST_CASE("consistent blended map: refine_choice refines the chosen blended map 
                                             match.blended[std::size_t(plain.group)]);
   CHECK(refined.refinement_accepted == expected.accepted);
   CHECK(refined.map.nearest == (expected.accepted ? expected.map.nearest : plain.map.nearest));
+  CHECK(plain.refinement_distortion_ratio == -1);  // nothing refined
+  CHECK(refined.refinement_distortion_ratio ==
+        doctest::Approx(expected.distortion / match.blended[std::size_t(plain.group)].geodesic_distortion));
   // The pair is a moved copy: the refinement lands more vertices exactly on their true images than the blend.
   const auto exact = [&](const std::vector<index_t>& image) {
     index_t hits = 0;

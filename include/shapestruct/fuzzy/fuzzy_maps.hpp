@@ -134,24 +134,37 @@ struct consistent_blended_map {
   /// Geodesic distortion of the most consistent blended map (blended_candidate::geodesic_distortion), or -1 when
   /// the match has none.
   double most_consistent_distortion = -1;
-  /// With consistent_blended_options::refine_choice: the chosen blended map's refinement was kept.
+  /// With consistent_blended_options::refine_choice: the chosen blended map's refinement was kept, and its
+  /// geodesic distortion over the blended map's (-1 when nothing was refined).
   bool refinement_accepted = false;
+  double refinement_distortion_ratio = -1;
 };
 
 /// The blended map `group` of r (a match of a -> b by `aligner`) refined as the blended matcher refines its own
-/// selection (blended_matcher::refine_checked with the aligner's matcher options), or the blended map itself where
-/// the refinement's distortion check rejects it. `accepted` (optional) says which.
+/// selection (blended_matcher::refine_checked with the aligner's matcher options), with both of its checks' verdicts.
 /// \throws as blended_matcher::refine_checked.
-[[nodiscard]] inline surface_map<double> refined_blended_choice(const intrinsic_aligner& aligner, index_t a, index_t b,
-                                                                const blended_match_result<double>& r, index_t group,
-                                                                int threads, bool* accepted = nullptr) {
-  const auto& chosen = r.blended.at(std::size_t(group));
+[[nodiscard]] inline checked_refinement checked_blended_choice(const intrinsic_aligner& aligner, index_t a, index_t b,
+                                                               const blended_match_result<double>& r, index_t group,
+                                                               int threads) {
   blended_matcher_options o = aligner.options().matcher;
   o.threads = threads;
   const auto shape_a = aligner.prepared_shape(a);
   const auto shape_b = aligner.prepared_shape(b);
-  checked_refinement refined = blended_matcher<>(o).refine_checked(*shape_a, *shape_b, chosen);
+  return blended_matcher<>(o).refine_checked(*shape_a, *shape_b, r.blended.at(std::size_t(group)));
+}
+
+/// The blended map `group` of r refined (checked_blended_choice), or the blended map itself where the refinement's
+/// distortion check rejects it. `accepted` (optional) says which; `distortion_ratio` (optional) receives the
+/// refined map's geodesic distortion over the blended map's.
+/// \throws as blended_matcher::refine_checked.
+[[nodiscard]] inline surface_map<double> refined_blended_choice(const intrinsic_aligner& aligner, index_t a, index_t b,
+                                                                const blended_match_result<double>& r, index_t group,
+                                                                int threads, bool* accepted = nullptr,
+                                                                double* distortion_ratio = nullptr) {
+  checked_refinement refined = checked_blended_choice(aligner, a, b, r, group, threads);
+  const auto& chosen = r.blended.at(std::size_t(group));
   if (accepted) *accepted = refined.accepted;
+  if (distortion_ratio) *distortion_ratio = refined.distortion / chosen.geodesic_distortion;
   return refined.accepted ? std::move(refined.map) : chosen.map;
 }
 
@@ -228,7 +241,8 @@ struct consistent_blended_map {
     out.group = out.most_consistent_group;
   }
   out.map = options.refine_choice
-                ? refined_blended_choice(aligner, a, b, r, out.group, options.threads, &out.refinement_accepted)
+                ? refined_blended_choice(aligner, a, b, r, out.group, options.threads, &out.refinement_accepted,
+                                         &out.refinement_distortion_ratio)
                 : r.blended[std::size_t(out.group)].map;
   return out;
 }
