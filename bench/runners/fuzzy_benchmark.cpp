@@ -107,16 +107,15 @@ struct tuning {
     return {.sigma_fraction = intrinsic_sigma, .both_feature_sets = both_feature_sets};
   }
   [[nodiscard]] std::string intrinsic_cache_suffix() const;
-  /// --min-gain, --fuzzy-min-gain, --max-fuzzy-distortion, --fuzzy-min-distance
+  /// --min-gain, --fuzzy-min-gain, --max-fuzzy-distortion, --fuzzy-min-distance, --no-refine-choice. With a chosen
+  /// blended map refined (refine_choice, the default) the runner also scores it unrefined ("consistent_unrefined")
+  /// and logs the refinement's distortion ratio per pair; the comparison rows (unoriented, blended only) are
+  /// chosen the same way but left unrefined.
   consistent_blended_options consistent;
   /// --refined-duel (shrec): also score "consistent_refined", the blended maps' choice refined by ZoomOut against
   /// the refined fuzzy map, the more consistent of the two (both then equally precise), and that refined blended
   /// choice alone ("blended_only_refined").
   bool refined_duel = false;
-  /// --refine-choice (shrec, scape, humans, animals): also score "consistent_refined_checked", the consistent map
-  /// with a chosen blended map refined as the blended matcher refines its own (consistent_blended_options::
-  /// refine_choice).
-  bool refine_choice = false;
   /// The refined fuzzy map fits a scale per axis, as `fuzzy-map --refined` does (extrinsic_alignment_options::
   /// axis_scales, upright collections); --no-refine-axis-scales: one scale, the similarity alone.
   bool refine_axis_scales = true;
@@ -255,18 +254,16 @@ void write_choice(std::ostream& out, const std::string& pair_columns, const cons
       << fmt(cb.most_consistent_distortion, 5) << "," << fmt(cb.fuzzy_distance, 5) << "\n";
 }
 
-/// The consistent map with a chosen blended map refined (refined_blended_choice); one line on stdout says how much
-/// the refinement changed the map's geodesic distortion and whether it was kept, so other limits can be studied.
-std::vector<index_t> refined_choice(const intrinsic_aligner& aligner, index_t ia, index_t ib,
-                                    const blended_match_result<double>& pairwise, const consistent_blended_map& cb,
-                                    const std::string& a, const std::string& b, int threads) {
-  if (cb.fuzzy_chosen) return cb.map.nearest;
-  bool accepted = false;
-  double ratio = -1;
-  auto map = refined_blended_choice(aligner, ia, ib, pairwise, cb.group, threads, &accepted, &ratio);
-  std::cout << "  refinement " << a << " -> " << b << ": group " << cb.group << ", distortion ratio " << fmt(ratio, 4)
-            << (accepted ? ", kept\n" : ", undone\n");
-  return std::move(map.nearest);
+/// The consistent map's chosen blended map before its refinement (the comparison row "consistent_unrefined"), or
+/// nothing when nothing was refined; one line on stdout says how much the refinement changed the map's geodesic
+/// distortion and whether it was kept, so that other limits can be studied from one run.
+std::optional<std::vector<index_t>> unrefined_choice(const blended_match_result<double>& pairwise,
+                                                     const consistent_blended_map& cb, const std::string& a,
+                                                     const std::string& b) {
+  if (!knobs.consistent.refine_choice || cb.fuzzy_chosen) return std::nullopt;
+  std::cout << "  refinement " << a << " -> " << b << ": group " << cb.group << ", distortion ratio "
+            << fmt(cb.refinement_distortion_ratio, 4) << (cb.refinement_accepted ? ", kept\n" : ", undone\n");
+  return pairwise.blended[std::size_t(cb.group)].map.nearest;
 }
 
 // ---------------------------------------------------------------------------------------------- SHREC'07
@@ -362,21 +359,25 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
       const blended_match_result<double> pairwise = aligner.match(ia, ib);
       consistent_blended_options oriented = knobs.consistent;
       oriented.orientation = r.orientation;
+      oriented.threads = threads;
       const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, oriented);
       score("pairwise", pairwise.map.nearest);
       score("consistent_blended", cb.map.nearest);
       write_choice(choices_csv, std::to_string(cls) + "," + a + "," + b + ",", cb);
+      if (const auto unrefined = unrefined_choice(pairwise, cb, a, b)) score("consistent_unrefined", *unrefined);
+      consistent_blended_options unrefined_options = knobs.consistent;
+      unrefined_options.refine_choice = false;
       if (!r.orientation.empty())  // the same choice without the orientation, for the comparison
-        score("consistent_unoriented", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent).map.nearest);
+        score("consistent_unoriented",
+              make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, unrefined_options).map.nearest);
       std::optional<consistent_blended_map> blended_choice;  // the choice among the blended maps alone
       if (knobs.consistent.fuzzy_candidate || knobs.refined_duel) {
         consistent_blended_options blended_only = oriented;
+        blended_only.refine_choice = false;
         blended_only.fuzzy_candidate = false;
         blended_choice = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, blended_only);
       }
       if (knobs.consistent.fuzzy_candidate) score("consistent_blended_only", blended_choice->map.nearest);
-      if (knobs.refine_choice)
-        score("consistent_refined_checked", refined_choice(aligner, ia, ib, pairwise, cb, a, b, threads));
       score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
       if (knobs.refined_duel) {
         const consistent_blended_map& choice = *blended_choice;
@@ -425,8 +426,8 @@ int run_shrec(const fs::path& data, const fs::path& out_dir, const std::string& 
               << cell("consistent_blended")
               << (r.orientation.empty() ? std::string() : " (without the orientation " + cell("consistent_unoriented") + ")")
               << (knobs.consistent.fuzzy_candidate ? " (among the blended maps only " + cell("consistent_blended_only") + ")" : std::string())
-              << (knobs.refine_choice ? " (the choice refined " + cell("consistent_refined_checked") + ")"
-                                      : std::string())
+              << (knobs.consistent.refine_choice ? " (unrefined " + cell("consistent_unrefined") + ")"
+                                                 : std::string())
               << ", best fuzzy " << cell("best_fuzzy") << ", stored original "
               << fmt(within(here["stored_original"].raw, 0.25)) << "\n";
   }
@@ -524,19 +525,23 @@ void score_list_pair(intrinsic_aligner& aligner, const fuzzy_collection_result& 
   const blended_match_result<double> pairwise = aligner.match(ia, ib);
   consistent_blended_options oriented = knobs.consistent;
   oriented.orientation = r.orientation;
+  oriented.threads = threads;
   const auto cb = make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, oriented);
   score("pairwise", pairwise.map.nearest);
   score("consistent_blended", cb.map.nearest);
   write_choice(choices, a + "," + b + ",", cb);
+  if (const auto unrefined = unrefined_choice(pairwise, cb, a, b)) score("consistent_unrefined", *unrefined);
+  consistent_blended_options unrefined_options = knobs.consistent;
+  unrefined_options.refine_choice = false;
   if (!r.orientation.empty())  // the same choice without the orientation, for the comparison
-    score("consistent_unoriented", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, knobs.consistent).map.nearest);
+    score("consistent_unoriented",
+          make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, unrefined_options).map.nearest);
   if (knobs.consistent.fuzzy_candidate) {  // the choice among the blended maps alone, for the comparison
     consistent_blended_options blended_only = oriented;
+    blended_only.refine_choice = false;
     blended_only.fuzzy_candidate = false;
     score("consistent_blended_only", make_consistent_blended_map(aligner, r.fuzzy, ia, ib, pairwise, blended_only).map.nearest);
   }
-  if (knobs.refine_choice)
-    score("consistent_refined_checked", refined_choice(aligner, ia, ib, pairwise, cb, a, b, threads));
   score("best_fuzzy", best_fuzzy_vertex_map(r.fuzzy, records, ia, ib));
   if (fs::exists(stored)) {
     const auto blocks = read_bim_result(stored.string());
@@ -1106,7 +1111,7 @@ static int run(int argc, char** argv) {
     else if (a == "--max-fuzzy-distortion") knobs.consistent.max_fuzzy_distortion_ratio = std::stod(next());
     else if (a == "--fuzzy-min-distance") knobs.consistent.fuzzy_min_distance = std::stod(next());
     else if (a == "--refined-duel") knobs.refined_duel = true;
-    else if (a == "--refine-choice") knobs.refine_choice = true;
+    else if (a == "--no-refine-choice") knobs.consistent.refine_choice = false;
     else if (a == "--no-fuzzy-candidate") knobs.consistent.fuzzy_candidate = false;
     else {
       std::cerr << "usage: run_fuzzy_benchmark --set shrec|scape|humans|animals|chairs|airplanes|coseg|psb --out DIR [--data DIR] [--classes 1,4] "
@@ -1115,7 +1120,7 @@ static int run(int argc, char** argv) {
                    "  [--orientation-margin F]\n"
                    "  [--aligner extrinsic|truth] [--sigma F] [--up 0|1|2|-1] [--intrinsic-sigma F] [--both-feature-sets] [--min-gain F] [--fuzzy-min-gain F]\n"
                    "  [--max-fuzzy-distortion R] [--fuzzy-min-distance D] [--no-fuzzy-candidate] [--refined-duel]\n"
-                   "  [--refine-choice]\n"
+                   "  [--no-refine-choice]\n"
                    "  [--no-refine-axis-scales] [--baseline-axis-scales] [--axis-scales]\n";
       return 2;
     }

@@ -147,7 +147,7 @@ struct fuzzy_map_command_line {
   double min_gain = consistent_blended_options{}.min_consistency_gain;
   double fuzzy_min_gain = consistent_blended_options{}.fuzzy_min_gain;
   bool blended_only = false;
-  bool refine_choice = false;
+  bool unrefined_choice = false;
   bool refined = false;
   bool no_axis_scales = false;
   long long threads = 0;
@@ -183,7 +183,7 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
     const auto cb = make_consistent_blended_map(aligner, f, a, b,
                                                 {.min_consistency_gain = c.min_gain, .orientation = collection.orientation,
                                                  .fuzzy_candidate = !c.blended_only, .fuzzy_min_gain = c.fuzzy_min_gain,
-                                                 .refine_choice = c.refine_choice, .threads = int(c.threads)});
+                                                 .refine_choice = !c.unrefined_choice, .threads = int(c.threads)});
     map = cb.map.nearest;
     if (cb.fuzzy_chosen)
       std::fprintf(stderr, "fuzzy-map: the refined best fuzzy map chosen (consistency %.3g; of the %zu blended maps the "
@@ -191,7 +191,7 @@ int run_fuzzy_map(const fuzzy_map_command_line& c) {
                    cb.fuzzy_consistency, cb.consistency.size(), long(cb.pairwise_group), long(cb.most_consistent_group));
     else {
       char refinement[160] = "";
-      if (c.refine_choice)
+      if (!c.unrefined_choice)
         std::snprintf(refinement, sizeof refinement,
                       cb.refinement_accepted ? ", refined (its geodesic distortion x%.3g)"
                                              : ", its refinement undone (it multiplied the geodesic distortion by %.3g)",
@@ -499,9 +499,10 @@ cli::command_fn setup_fuzzy_map(CLI::App& app) {
   auto* blended_only = app.add_flag("--blended-only", c->blended_only,
                "with --consistent-blended: choose among the blended maps only (by default\nthe best fuzzy map, refined by ZoomOut, competes with them)")
       ->needs(consistent);
-  app.add_flag("--refine-choice", c->refine_choice,
-               "with --consistent-blended: refine a chosen blended map as `shapestruct match`\n"
-               "refines its own (ZoomOut, long moves checked, undone if it distorts\n1.5 times as much)")
+  app.add_flag("--unrefined-choice", c->unrefined_choice,
+               "with --consistent-blended: keep a chosen blended map as blended (by default\n"
+               "it is refined as `shapestruct match` refines its own: ZoomOut, long moves\n"
+               "checked, undone if it distorts 1.5 times as much)")
       ->needs(consistent);
   app.add_option("--fuzzy-min-gain", c->fuzzy_min_gain,
                  "with --consistent-blended: how much more consistent (a fraction) the refined\nfuzzy map must be than every blended map to be chosen (default 0: whenever\nit is the most consistent)")

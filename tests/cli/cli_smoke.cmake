@@ -99,7 +99,7 @@ get_filename_component(creature_b_stem ${creature_b} NAME_WE)
 file(STRINGS ${creature_a} creature_a_header LIMIT_COUNT 2)
 list(GET creature_a_header 1 creature_a_counts)
 string(REGEX MATCH "^[0-9]+" creature_a_vertices "${creature_a_counts}")
-foreach(variant "" "--blended-only" "--fuzzy-min-gain;0.5" "--blended-only;--refine-choice")
+foreach(variant "" "--blended-only" "--fuzzy-min-gain;0.5" "--blended-only;--unrefined-choice")
   run_cli(0 out fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/creatures_ab.map
           --consistent-blended ${variant})
   if(NOT out MATCHES "chosen")
@@ -110,8 +110,12 @@ foreach(variant "" "--blended-only" "--fuzzy-min-gain;0.5" "--blended-only;--ref
   if(NOT line_count EQUAL creature_a_vertices)
     message(FATAL_ERROR "fuzzy-map --consistent-blended ${variant} wrote ${line_count} lines for ${creature_a_vertices} vertices")
   endif()
-  if(variant MATCHES "refine-choice" AND NOT out MATCHES "refine")
+  # A chosen blended map is refined unless asked otherwise, and the tool says what became of the refinement.
+  if(out MATCHES "blended map [0-9]+ of" AND NOT variant MATCHES "unrefined" AND NOT out MATCHES "refine")
     message(FATAL_ERROR "fuzzy-map --consistent-blended ${variant} does not say what became of the refinement:\n${out}")
+  endif()
+  if(variant MATCHES "unrefined" AND out MATCHES "refine")
+    message(FATAL_ERROR "fuzzy-map --consistent-blended ${variant} refined its choice:\n${out}")
   endif()
   file(REMOVE ${WORK}/creatures_ab.map)
 endforeach()
@@ -152,9 +156,9 @@ run_cli_error("out of range" "--cache-memory: must be in 64..1048576, got 10"
               fuzzy ${WORK}/creatures -o ${WORK}/never --cache-memory 10)
 run_cli_error("option without the one it refines" "--blended-only requires --consistent-blended"
               fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/never.map --blended-only)
-run_cli_error("option without the one it refines" "--refine-choice requires --consistent-blended"
+run_cli_error("option without the one it refines" "--unrefined-choice requires --consistent-blended"
               fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/never.map
-              --refine-choice)
+              --unrefined-choice)
 run_cli_error("--refined on an intrinsic collection" "--refined needs an extrinsic collection"
               fuzzy-map ${WORK}/creatures_fuzzy ${creature_a_stem} ${creature_b_stem} -o ${WORK}/never.map --refined)
 run_cli_error("contradicting options" "--blended-only excludes --fuzzy-min-gain"

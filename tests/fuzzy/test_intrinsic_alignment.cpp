@@ -142,16 +142,18 @@ TEST_CASE("consistent blended map: the collection overrules the matcher only by 
     CHECK_THROWS_AS((void)make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.min_consistency_gain = bad}), invalid_input);
 }
 
-TEST_CASE("consistent blended map: refine_choice refines the chosen blended map as the matcher refines its own") {
+TEST_CASE("consistent blended map: by default the chosen blended map is refined as the matcher refines its own") {
   const auto c = make_creatures(3);
   auto options = flip_telling_options();
   options.start_from_matcher_selection = true;  // so the collection agrees with the matcher on the true map
   const intrinsic_aligner aligner(c.records, [&](index_t k) { return c.meshes[std::size_t(k)]; }, options);
   const auto r = compute_fuzzy_correspondences(c.records, aligner, small_collection_options());
   const auto match = aligner.match(0, 1);
-  const auto plain = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.fuzzy_candidate = false});
-  const auto refined = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match,
-                                                   {.fuzzy_candidate = false, .refine_choice = true, .threads = 2});
+  const auto plain = make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match,
+                                                 {.fuzzy_candidate = false, .refine_choice = false});
+  // On by default.
+  const auto refined =
+      make_consistent_blended_map(aligner, r.fuzzy, 0, 1, match, {.fuzzy_candidate = false, .threads = 2});
   REQUIRE(refined.group == plain.group);
   auto matcher_options = aligner.options().matcher;
   matcher_options.threads = 2;
