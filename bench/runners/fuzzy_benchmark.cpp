@@ -254,13 +254,15 @@ void write_choice(std::ostream& out, const std::string& pair_columns, const cons
       << fmt(cb.most_consistent_distortion, 5) << "," << fmt(cb.fuzzy_distance, 5) << "\n";
 }
 
-/// The consistent map's chosen blended map before its refinement (the comparison row "consistent_unrefined"), or
-/// nothing when nothing was refined; one line on stdout says how much the refinement changed the map's geodesic
-/// distortion and whether it was kept, so that other limits can be studied from one run.
+/// The consistent map before its chosen blended map's refinement (the comparison row "consistent_unrefined"; the
+/// map itself where the refined fuzzy map was chosen, so that the row covers every pair), or nothing when the
+/// refinement is off; one line on stdout says how much the refinement changed the map's geodesic distortion and
+/// whether it was kept, so that other limits can be studied from one run.
 std::optional<std::vector<index_t>> unrefined_choice(const blended_match_result<double>& pairwise,
                                                      const consistent_blended_map& cb, const std::string& a,
                                                      const std::string& b) {
-  if (!knobs.consistent.refine_choice || cb.fuzzy_chosen) return std::nullopt;
+  if (!knobs.consistent.refine_choice) return std::nullopt;
+  if (cb.fuzzy_chosen) return cb.map.nearest;
   std::cout << "  refinement " << a << " -> " << b << ": group " << cb.group << ", distortion ratio "
             << fmt(cb.refinement_distortion_ratio, 4) << (cb.refinement_accepted ? ", kept\n" : ", undone\n");
   return pairwise.blended[std::size_t(cb.group)].map.nearest;
