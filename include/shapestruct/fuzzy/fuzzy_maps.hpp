@@ -142,28 +142,20 @@ struct consistent_blended_map {
 };
 
 /// The blended map `group` of r (a match of a -> b by `aligner`) refined as the blended matcher refines its own
-/// selection (blended_matcher::refine_checked with the aligner's matcher options), with both of its checks' verdicts.
-/// \throws as blended_matcher::refine_checked.
-[[nodiscard]] inline checked_refinement checked_blended_choice(const intrinsic_aligner& aligner, index_t a, index_t b,
-                                                               const blended_match_result<double>& r, index_t group,
-                                                               int threads) {
-  blended_matcher_options o = aligner.options().matcher;
-  o.threads = threads;
-  const auto shape_a = aligner.prepared_shape(a);
-  const auto shape_b = aligner.prepared_shape(b);
-  return blended_matcher<>(o).refine_checked(*shape_a, *shape_b, r.blended.at(std::size_t(group)));
-}
-
-/// The blended map `group` of r refined (checked_blended_choice), or the blended map itself where the refinement's
-/// distortion check rejects it. `accepted` (optional) says which; `distortion_ratio` (optional) receives the
-/// refined map's geodesic distortion over the blended map's.
+/// selection (blended_matcher::refine_checked with the aligner's matcher options), or the blended map itself where
+/// the refinement's distortion check rejects it. `accepted` (optional) says which; `distortion_ratio` (optional)
+/// receives the refined map's geodesic distortion over the blended map's.
 /// \throws as blended_matcher::refine_checked.
 [[nodiscard]] inline surface_map<double> refined_blended_choice(const intrinsic_aligner& aligner, index_t a, index_t b,
                                                                 const blended_match_result<double>& r, index_t group,
                                                                 int threads, bool* accepted = nullptr,
                                                                 double* distortion_ratio = nullptr) {
-  checked_refinement refined = checked_blended_choice(aligner, a, b, r, group, threads);
   const auto& chosen = r.blended.at(std::size_t(group));
+  blended_matcher_options o = aligner.options().matcher;
+  o.threads = threads;
+  const auto shape_a = aligner.prepared_shape(a);
+  const auto shape_b = aligner.prepared_shape(b);
+  checked_refinement refined = blended_matcher<>(o).refine_checked(*shape_a, *shape_b, chosen);
   if (accepted) *accepted = refined.accepted;
   if (distortion_ratio) *distortion_ratio = refined.distortion / chosen.geodesic_distortion;
   return refined.accepted ? std::move(refined.map) : chosen.map;
