@@ -3,6 +3,7 @@
 // the benchmark's protocol, side by side with the original authors' stored per-pair results.
 //
 //   run_bim_benchmark --data $SHAPESTRUCT_DATA --set scape --out results/ [--limit N] [--stride K] [--threads T]
+//                     [--reverse]
 //
 // Error = geodesic distance (Dijkstra, on the target) / sqrt(area of the target): the benchmark's scale and that
 // of the stored results (see the data README; eval/geodesic_error.hpp, benchmark_geodesic_errors). Dense sets
@@ -14,6 +15,9 @@
 // TOSCA/SHREC'07 four-legged animals) have no dense truth: they are scored, as the stored results are (36 resp. 21
 // errors per pair), at the source's feature points, whose true image is the target's feature point of the same
 // name (.info / c<k>.info, matched by name, not by line), and "with flips" uses the target class's .sym.info.
+// --reverse matches every pair the other way round (target -> source; no stored result is compared then), to see
+// whether a pair that one direction gets wrong the other gets right; --both-directions turns on the matcher's
+// blended_matcher_options::both_directions (with --groups, each group's reverse partner is written too).
 // Writes <set>_pairs.csv, <set>_errors.tsv (per-sample errors of
 // both methods, for curves), and appends to summary.md.
 #include <algorithm>
@@ -78,7 +82,7 @@ static int run(int argc, char** argv) {
   double feature_persistence = -1, alternative_persistence = -1, alternative_margin = -1;
   std::string selection;  // empty: the library default (blended_matcher_options::selection)
   int max_eigenvectors = -1, max_groups = -1;
-  bool refine = true, check_refinement = true;
+  bool refine = true, check_refinement = true, reverse = false, both_directions = false;
   double refinement_move_check = -1;
   zoomout_options zoomout;
   for (int i = 1; i < argc; ++i) {
@@ -98,6 +102,8 @@ static int run(int argc, char** argv) {
     else if (a == "--offset") offset = std::stoi(next());
     else if (a == "--threads") threads = std::stoi(next());
     else if (a == "--groups") diagnose_groups = true;
+    else if (a == "--reverse") reverse = true;
+    else if (a == "--both-directions") both_directions = true;
     else if (a == "--eigenvalue-fraction") eigenvalue_fraction = std::stod(next());
     else if (a == "--feature-radius") feature_radius = std::stod(next());
     else if (a == "--min-features") min_features = std::stoi(next());
@@ -130,7 +136,7 @@ static int run(int argc, char** argv) {
     else if (a == "--no-refinement-check") check_refinement = false;
     else {
       std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec|humans|animals --out DIR [--limit N] [--stride K] "
-                   "[--offset O] [--threads T] [--groups]\n"
+                   "[--offset O] [--threads T] [--groups] [--reverse] [--both-directions]\n"
                    "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G] [--feature-radius R] [--min-features N]\n"
                    "  [--feature-persistence P] [--alternative-persistence P] (0: one feature set) [--alternative-margin M]\n"
                    "  [--selection adaptive|confidence-distortion|confidence|area|area-confidence] (as `shapestruct match`; default: the library's)\n"
@@ -153,6 +159,7 @@ static int run(int argc, char** argv) {
   // --groups: build every blended map in full and score each one against the truth (<set>_groups.csv), to see
   // whether the selection picked the best group and what each group's measures were.
   options.full_maps_for_all_groups = diagnose_groups;
+  options.both_directions = both_directions;
   if (eigenvalue_fraction >= 0) options.eigenvalue_fraction = eigenvalue_fraction;
   if (feature_radius > 0) options.shape.feature_radius = feature_radius;
   if (min_features >= 0) options.shape.min_features = min_features;
@@ -171,7 +178,9 @@ static int run(int argc, char** argv) {
   const fs::path data(data_dir);
   const set_info info = sets.at(set);
   fs::create_directories(out_dir);
-  const auto pairs = read_bim_query((data / "Results" / info.query).string());
+  auto pairs = read_bim_query((data / "Results" / info.query).string());
+  if (reverse)
+    for (auto& pr : pairs) std::swap(pr.source, pr.target);
   if (max_eigenvectors > 0) options.max_eigenvectors = max_eigenvectors;
   if (max_groups > 0) options.max_groups = max_groups;
   options.refine = refine;
@@ -183,7 +192,8 @@ static int run(int argc, char** argv) {
   if (diagnose_groups) {
     groups_csv.open(fs::path(out_dir) / (set + "_groups.csv"));
     groups_csv << "source,target,group,maps,eigen_weight,score,confidence_integral,geodesic_distortion,convexity_mismatch,"
-                  "mean,mean_sym,w025,w025_sym,points,selection_rank,selected\n";
+                  "mean,mean_sym,w025,w025_sym,points,selection_rank,selected,forward_selected,reverse_partner,"
+                  "reverse_cycle_error,partner_rank,partner_confidence,partner_distortion,reverse_selected\n";
   }
 
   std::ofstream csv(fs::path(out_dir) / (set + "_pairs.csv"));
@@ -338,7 +348,16 @@ static int run(int argc, char** argv) {
                      << fmt(bc.eigen_weight) << "," << fmt(bc.score) << "," << fmt(bc.confidence_integral) << ","
                      << fmt(bc.geodesic_distortion) << "," << fmt(bc.convexity_mismatch) << "," << fmt(g_raw.mean) << "," << fmt(g_sym.mean) << ","
                      << fmt(g_raw.within_025) << "," << fmt(g_sym.within_025) << "," << gi.size() << "," << bc.selection_rank << ","
-                     << (static_cast<index_t>(g) == r.selected ? 1 : 0) << "\n";
+                     << (static_cast<index_t>(g) == r.selected ? 1 : 0) << ","
+                     << (static_cast<index_t>(g) == r.forward_selected ? 1 : 0) << ",";
+          if (bc.reverse_partner != no_index) {
+            const auto& h = r.reverse_blended[static_cast<std::size_t>(bc.reverse_partner)];
+            groups_csv << bc.reverse_partner << "," << fmt(bc.reverse_cycle_error) << "," << h.selection_rank << ","
+                       << fmt(h.confidence_integral) << "," << fmt(h.geodesic_distortion) << ","
+                       << (bc.reverse_partner == r.reverse_selected ? 1 : 0) << "\n";
+          } else {
+            groups_csv << ",,,,,\n";
+          }
         }
         groups_csv.flush();
       }

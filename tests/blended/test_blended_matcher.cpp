@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -397,4 +398,64 @@ TEST_CASE("blended_matcher undoes a refinement that distorts distances, unless t
   CHECK(kept.refinement_accepted);
   CHECK(kept.map.nearest == kept.refined_map.nearest);
   CHECK(kept.map.nearest != kept.blended[static_cast<std::size_t>(kept.selected)].map.nearest);
+}
+
+TEST_CASE("blended_matcher with both_directions pairs every map with its inverse and keeps a selection both agree on") {
+  const auto m = test::front_back_creature(3);  // its intrinsic flip forms a second group in each direction
+  std::vector<index_t> perm;
+  const auto moved = test::moved_and_permuted(m, perm);
+  auto o = small_options();
+  const auto one_way = blended_matcher<>(o).match(m, moved);
+  o.both_directions = true;
+  const auto r = blended_matcher<>(o).match(m, moved);
+  REQUIRE(!r.reverse_blended.empty());
+  REQUIRE(r.reverse_selected >= 0);
+  CHECK(r.reverse_selected < static_cast<index_t>(r.reverse_blended.size()));
+  // The forward pass is the one-way match; the directions agree here (on the flip, which intrinsic measures cannot
+  // tell from the truth on this creature in either direction), so its selection and map stand.
+  CHECK(r.forward_selected == one_way.selected);
+  CHECK(r.selected == one_way.selected);
+  CHECK(r.map.nearest == one_way.map.nearest);
+  const auto& chosen = r.blended[static_cast<std::size_t>(r.selected)];
+  CHECK(chosen.reverse_partner == r.reverse_selected);
+  CHECK(chosen.reverse_cycle_error <= o.reverse_agreement);
+  for (const auto& b : r.blended) {
+    REQUIRE(b.reverse_partner >= 0);
+    CHECK(b.reverse_partner < static_cast<index_t>(r.reverse_blended.size()));
+    CHECK(b.reverse_cycle_error >= 0);
+    CHECK(std::isfinite(b.reverse_cycle_error));
+  }
+  // Without the option nothing of the reverse pass is reported.
+  CHECK(one_way.reverse_blended.empty());
+  CHECK(one_way.reverse_selected == no_index);
+  CHECK(one_way.forward_selected == one_way.selected);
+}
+
+namespace {
+blended_candidate<double> ranked(index_t rank, index_t partner, double cycle_error) {
+  blended_candidate<double> c;
+  c.selection_rank = rank;
+  c.reverse_partner = partner;
+  c.reverse_cycle_error = cycle_error;
+  return c;
+}
+}  // namespace
+
+TEST_CASE("blended_matcher's reconciled_selection follows the reverse selection only when the rank sums say so") {
+  using matcher = blended_matcher<>;
+  // Reverse maps: 0 selected (rank 0), 1 ranked 1.
+  const std::vector<blended_candidate<double>> reverse = {ranked(0, no_index, 0), ranked(1, no_index, 0)};
+  // The directions agree: forward 0 pairs with the reverse selection.
+  CHECK(matcher::reconciled_selection({ranked(0, 0, 0.03), ranked(1, 1, 0.04)}, 0, reverse, 0, 0.1) == 0);
+  // They disagree: forward 0 (rank 0) pairs with reverse 1 (rank 1): sum 1; forward 1 (rank 1) with reverse 0
+  // (rank 0): sum 1. A tie keeps the forward selection.
+  CHECK(matcher::reconciled_selection({ranked(0, 1, 0.03), ranked(1, 0, 0.04)}, 0, reverse, 0, 0.1) == 0);
+  // Forward 1 ranks 1 but forward 0 has no reverse counterpart (its best cycle error is above the agreement): 0 + 2
+  // against 1 + 0, so forward 1 is taken.
+  CHECK(matcher::reconciled_selection({ranked(0, 1, 0.30), ranked(1, 0, 0.04)}, 0, reverse, 0, 0.1) == 1);
+  // No forward map comes within the agreement of the reverse selection: the forward selection stands.
+  CHECK(matcher::reconciled_selection({ranked(0, 1, 0.30), ranked(1, 0, 0.20)}, 0, reverse, 0, 0.1) == 0);
+  // With three forward maps, the one closest to the reverse selection's inverse is the candidate.
+  CHECK(matcher::reconciled_selection({ranked(0, 1, 0.50), ranked(2, 0, 0.08), ranked(1, 0, 0.02)}, 0, reverse, 0,
+                                      0.1) == 2);
 }

@@ -129,6 +129,16 @@ struct blended_matcher_options {
   /// ... and if the refined image distorts geodesic distances more than this many times as much as the blended one
   /// against the rest of the map.
   double refinement_move_distortion_ratio = 1.5;
+  /// Also match b -> a and reconcile the two directions (off by default; docs/blended_maps.md, "Both
+  /// directions"). A pair can be ambiguous one way and not the other: a long-armed gorilla onto a human is matched
+  /// best upside down, the human onto the gorilla the right way up. When the reverse selection is not close to
+  /// the inverse of the forward one (mean cycle error at a's even samples above reverse_agreement), the forward
+  /// group that agrees best with the reverse selection replaces the forward selection if, paired with it, it has
+  /// the lower sum of the two directions' selection ranks than the forward selection paired with its own best
+  /// reverse partner. About doubles the matching time (the shapes are prepared once).
+  bool both_directions = false;
+  /// Mean cycle error a -> b -> a at a's even samples (unit-area units) up to which two maps count as inverses.
+  double reverse_agreement = 0.1;
   int threads = 0;  ///< std::threads, 0 = all cores; the result does not depend on it
   /// Progress callback (stage name, seconds spent in it); the library never prints.
   std::function<void(const std::string&, double)> on_stage{};
@@ -163,6 +173,12 @@ struct blended_candidate {
   index_t selection_rank = 0;
   /// Its candidates pair the shapes' second feature sets (blended_shape::alternative), not the full ones.
   bool alternative_features = false;
+  /// The image of each even sample of the source as an internal target vertex (no_index where unmapped).
+  std::vector<index_t> sample_image;
+  /// With blended_matcher_options::both_directions: the reverse match's group (blended_match_result::
+  /// reverse_blended) that agrees best with this map, and the mean cycle error with it (NaN without).
+  index_t reverse_partner = no_index;
+  Scalar reverse_cycle_error = std::numeric_limits<Scalar>::quiet_NaN();
   /// The blended map (source vertices -> target surface points); empty for unselected groups unless
   /// blended_matcher_options::full_maps_for_all_groups (blended_matcher::blend_group rebuilds it).
   surface_map<Scalar> map;
@@ -192,6 +208,12 @@ struct blended_match_result {
   /// only one set).
   bool alternative_features = false;
   Scalar other_features_distortion = std::numeric_limits<Scalar>::quiet_NaN();
+  /// With blended_matcher_options::both_directions: the reverse match's blended maps (b -> a; their `map`s
+  /// dropped), the one it selected, and the forward selection before the two were reconciled (equal to
+  /// `selected` unless the reverse direction changed it).
+  std::vector<blended_candidate<Scalar>> reverse_blended;
+  index_t reverse_selected = no_index;
+  index_t forward_selected = no_index;
 };
 
 /// The refinement of one blended map with the matcher's two checks (blended_matcher::refine_checked).
@@ -269,24 +291,16 @@ class blended_matcher {
   /// Complexity: dominated by the consistency matrix, O(pairs * samples * log F / threads).
   [[nodiscard]] blended_match_result<double> match(const blended_shape<double>& a,
                                                    const blended_shape<double>& b) const {
-    blended_run run = match_unrefined(a, b, "");
-    if (a.alternative() || b.alternative()) {
-      const blended_shape<double>& a2 = a.alternative() ? *a.alternative() : a;
-      const blended_shape<double>& b2 = b.alternative() ? *b.alternative() : b;
-      blended_run second = match_unrefined(a2, b2, ", alternative features");
-      const double full = run.out.blended[static_cast<std::size_t>(run.out.selected)].geodesic_distortion;
-      const double fewer = second.out.blended[static_cast<std::size_t>(second.out.selected)].geodesic_distortion;
-      // A distortion that could not be measured (NaN) loses.
-      const bool take_second =
-          fewer < (1 - options_.alternative_distortion_margin) * full || (std::isnan(full) && !std::isnan(fewer));
-      // Timings: the full set's stages, then the alternative's, whichever is kept.
-      std::vector<std::pair<std::string, double>> timings = std::move(run.out.timings);
-      timings.insert(timings.end(), second.out.timings.begin(), second.out.timings.end());
-      if (options_.keep_both_feature_sets) pool_feature_sets(run, second, take_second);
-      else if (take_second) run = std::move(second);
-      run.out.alternative_features = take_second;
-      run.out.other_features_distortion = take_second ? full : fewer;
-      run.out.timings = std::move(timings);
+    blended_run run = match_feature_sets(a, b, "");
+    run.out.forward_selected = run.out.selected;
+    if (options_.both_directions) {
+      blended_run back = match_feature_sets(b, a, ", reverse");
+      const auto t = clock::now();
+      reconcile_directions(a, b, run, back);
+      run.out.timings.insert(run.out.timings.end(), back.out.timings.begin(), back.out.timings.end());
+      const double s = seconds(t);
+      run.out.timings.emplace_back("directions", s);
+      if (options_.on_stage) options_.on_stage("directions", s);
     }
     if (options_.refine) {
       const auto t = clock::now();
@@ -305,6 +319,40 @@ class blended_matcher {
       if (options_.on_stage) options_.on_stage("refinement", s);
     }
     return std::move(run.out);
+  }
+
+  /// blended_matcher_options::both_directions' rule, given each forward map's reverse_partner and
+  /// reverse_cycle_error: the forward map to keep. It is `forward_selected` when that map's cycle error with its
+  /// partner is at most `agreement` and the partner is the reverse selection (the directions agree), or when no
+  /// forward map comes within `agreement` of the reverse selection. Otherwise the forward map closest to the reverse
+  /// selection's inverse replaces it if the sum of its selection_rank and the reverse selection's is lower than
+  /// the forward selection's with its own partner's (a forward map without a partner within `agreement` counts
+  /// that partner's rank as the number of reverse maps); ties keep the forward selection.
+  [[nodiscard]] static index_t reconciled_selection(const std::vector<blended_candidate<double>>& forward,
+                                                    index_t forward_selected,
+                                                    const std::vector<blended_candidate<double>>& reverse,
+                                                    index_t reverse_selected, double agreement) {
+    const auto n_rev = static_cast<index_t>(reverse.size());
+    const auto& selected = forward[static_cast<std::size_t>(forward_selected)];
+    if (selected.reverse_cycle_error <= agreement && selected.reverse_partner == reverse_selected)
+      return forward_selected;
+    index_t partner = no_index;
+    double partner_error = std::numeric_limits<double>::infinity();
+    for (index_t g = 0; g < static_cast<index_t>(forward.size()); ++g) {
+      const auto& bc = forward[static_cast<std::size_t>(g)];
+      if (bc.reverse_partner == reverse_selected && bc.reverse_cycle_error < partner_error) {
+        partner_error = bc.reverse_cycle_error;
+        partner = g;
+      }
+    }
+    if (partner == no_index || !(partner_error <= agreement)) return forward_selected;
+    const auto pair_rank = [&](index_t g) {
+      const auto& bc = forward[static_cast<std::size_t>(g)];
+      const bool paired = bc.reverse_cycle_error <= agreement && bc.reverse_partner >= 0 && bc.reverse_partner < n_rev;
+      return bc.selection_rank +
+             (paired ? reverse[static_cast<std::size_t>(bc.reverse_partner)].selection_rank : n_rev);
+    };
+    return pair_rank(partner) < pair_rank(forward_selected) ? partner : forward_selected;
   }
 
   /// The refinement match() applies to its selected map, with both its checks (refinement_move_check,
@@ -357,6 +405,93 @@ class blended_matcher {
     blended_match_result<double> out;
     surface_map<double> internal;
   };
+
+  /// match_unrefined with the full feature sets and, when either shape has a second set, with the second sets
+  /// too, keeping the second set's map only if it distorts geodesic distances clearly less.
+  blended_run match_feature_sets(const blended_shape<double>& a, const blended_shape<double>& b,
+                                 const std::string& suffix) const {
+    blended_run run = match_unrefined(a, b, suffix);
+    if (!a.alternative() && !b.alternative()) return run;
+    const blended_shape<double>& a2 = a.alternative() ? *a.alternative() : a;
+    const blended_shape<double>& b2 = b.alternative() ? *b.alternative() : b;
+    blended_run second = match_unrefined(a2, b2, ", alternative features" + suffix);
+    const double full = run.out.blended[static_cast<std::size_t>(run.out.selected)].geodesic_distortion;
+    const double fewer = second.out.blended[static_cast<std::size_t>(second.out.selected)].geodesic_distortion;
+    // A distortion that could not be measured (NaN) loses.
+    const bool take_second =
+        fewer < (1 - options_.alternative_distortion_margin) * full || (std::isnan(full) && !std::isnan(fewer));
+    // Timings: the full set's stages, then the alternative's, whichever is kept.
+    std::vector<std::pair<std::string, double>> timings = std::move(run.out.timings);
+    timings.insert(timings.end(), second.out.timings.begin(), second.out.timings.end());
+    if (options_.keep_both_feature_sets) pool_feature_sets(run, second, take_second);
+    else if (take_second) run = std::move(second);
+    run.out.alternative_features = take_second;
+    run.out.other_features_distortion = take_second ? full : fewer;
+    run.out.timings = std::move(timings);
+    return run;
+  }
+
+  /// Mean over the even samples of `a` of the geodesic distance on `a` from each sample to its image under
+  /// `forward` (a -> b, images of a's samples) then `backward` (b -> a, images of b's samples, read through the
+  /// sample of b nearest the forward image). Infinity when no sample goes round.
+  static double cycle_error(const blended_shape<double>& a, const blended_shape<double>& b,
+                            const std::vector<index_t>& forward, const std::vector<index_t>& backward) {
+    const auto& Ta = a.sample_distances();
+    const auto& Tb = b.sample_distances();
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::size_t s = 0; s < forward.size(); ++s) {
+      if (forward[s] == no_index) continue;
+      index_t k = 0;
+      Tb.row(forward[s]).minCoeff(&k);
+      const index_t back = backward[static_cast<std::size_t>(k)];
+      if (back == no_index) continue;
+      sum += Ta(back, static_cast<index_t>(s));
+      ++count;
+    }
+    return count > 0 ? sum / static_cast<double>(count) : std::numeric_limits<double>::infinity();
+  }
+
+  /// blended_matcher_options::both_directions: pairs every forward group with the reverse group that agrees best
+  /// with it, and replaces the forward selection by the forward partner of the reverse selection when that pair
+  /// has the lower rank sum (ties keep the forward selection). `run` and `back` may use either feature set; both
+  /// sets share the mesh and the samples.
+  void reconcile_directions(const blended_shape<double>& a, const blended_shape<double>& b, blended_run& run,
+                            blended_run& back) const {
+    auto& out = run.out;
+    auto& rev = back.out;
+    const auto n_rev = static_cast<index_t>(rev.blended.size());
+    for (auto& g : out.blended) {
+      g.reverse_partner = no_index;
+      g.reverse_cycle_error = std::numeric_limits<double>::infinity();
+      for (index_t h = 0; h < n_rev; ++h) {
+        const double e = cycle_error(a, b, g.sample_image, rev.blended[static_cast<std::size_t>(h)].sample_image);
+        if (e < g.reverse_cycle_error) {
+          g.reverse_cycle_error = e;
+          g.reverse_partner = h;
+        }
+      }
+    }
+    out.reverse_selected = rev.selected;
+    const index_t forward = out.selected;
+    const index_t partner = reconciled_selection(out.blended, forward, rev.blended, rev.selected,
+                                                 options_.reverse_agreement);
+    if (partner != forward) {
+      out.selected = partner;
+      auto& chosen = out.blended[static_cast<std::size_t>(partner)];
+      // With both feature sets pooled, each map knows its set; otherwise every map is of the kept set.
+      const bool alternative = options_.keep_both_feature_sets ? chosen.alternative_features : out.alternative_features;
+      out.alternative_features = alternative;
+      const blended_shape<double>& sa = alternative && a.alternative() ? *a.alternative() : a;
+      const blended_shape<double>& sb = alternative && b.alternative() ? *b.alternative() : b;
+      const double score = chosen.score;  // the selection's score, from the scored face subset
+      run.internal = blend(sa, sb, out, chosen, false);
+      chosen.score = score;
+      out.map = chosen.map;
+    }
+    for (auto& h : rev.blended) h.map = {};
+    out.reverse_blended = std::move(rev.blended);
+  }
 
   /// Candidates, confidence, consistency, eigenvectors, groups, blending and selection; `suffix` is appended to
   /// the stage names (the second feature set's run).
@@ -750,7 +885,8 @@ class blended_matcher {
       conf += c1 > 0 ? c2 / c1 : 0.0;
     }
     bc.confidence_integral = conf / static_cast<double>(ns);
-    const std::vector<index_t> image = sample_images(a, b, pts);
+    bc.sample_image = sample_images(a, b, pts);
+    const std::vector<index_t>& image = bc.sample_image;
     bc.geodesic_distortion = shapestruct::geodesic_distortion(a, b, image);
     const auto& Ca = a.sample_convexity();
     const auto& Cb = b.sample_convexity();
