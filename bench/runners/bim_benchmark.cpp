@@ -193,7 +193,8 @@ static int run(int argc, char** argv) {
     groups_csv.open(fs::path(out_dir) / (set + "_groups.csv"));
     groups_csv << "source,target,group,maps,eigen_weight,score,confidence_integral,geodesic_distortion,convexity_mismatch,"
                   "mean,mean_sym,w025,w025_sym,points,selection_rank,selected,forward_selected,reverse_partner,"
-                  "reverse_cycle_error,partner_rank,partner_confidence,partner_distortion,reverse_selected\n";
+                  "reverse_cycle_error,partner_rank,partner_confidence,partner_distortion,reverse_selected,"
+                  "cycle_errors,reverse_ranks,reverse_confidences,reverse_distortions\n";
   }
 
   std::ofstream csv(fs::path(out_dir) / (set + "_pairs.csv"));
@@ -354,9 +355,22 @@ static int run(int argc, char** argv) {
             const auto& h = r.reverse_blended[static_cast<std::size_t>(bc.reverse_partner)];
             groups_csv << bc.reverse_partner << "," << fmt(bc.reverse_cycle_error) << "," << h.selection_rank << ","
                        << fmt(h.confidence_integral) << "," << fmt(h.geodesic_distortion) << ","
-                       << (bc.reverse_partner == r.reverse_selected ? 1 : 0) << "\n";
+                       << (bc.reverse_partner == r.reverse_selected ? 1 : 0) << ",";
+            // Every reverse map: the cycle error with this map, and its rank, confidence and distortion (';').
+            const auto joined = [&](auto value) {
+              std::string cell;
+              for (std::size_t h = 0; h < r.reverse_blended.size(); ++h) {
+                if (h > 0) cell += ';';
+                cell += fmt(value(h));
+              }
+              return cell;
+            };
+            groups_csv << joined([&](std::size_t h) { return bc.reverse_cycle_errors[h]; }) << ","
+                       << joined([&](std::size_t h) { return double(r.reverse_blended[h].selection_rank); }) << ","
+                       << joined([&](std::size_t h) { return r.reverse_blended[h].confidence_integral; }) << ","
+                       << joined([&](std::size_t h) { return r.reverse_blended[h].geodesic_distortion; }) << "\n";
           } else {
-            groups_csv << ",,,,,\n";
+            groups_csv << ",,,,,,,,,\n";
           }
         }
         groups_csv.flush();

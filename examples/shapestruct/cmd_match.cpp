@@ -65,6 +65,7 @@ struct match_options {
   std::string refine = "zoomout";  // refinement of the blended map
   long long refine_basis = zoomout_options{}.final_size;
   double refinement_move_check = blended_matcher_options{}.refinement_move_check;
+  bool both_directions = false;  // also match TGT -> SRC and reconcile the two selections
   long long threads = 0;
   bool verbose = false;
 };
@@ -179,6 +180,7 @@ int run_match(const match_options& m) {
   cands.options.pruning = pruning == "random" ? triplet_pruning::random : triplet_pruning::feature_distances;
   o.refine = m.refine == "zoomout";
   o.refinement_move_check = m.refinement_move_check;
+  o.both_directions = m.both_directions;
   zoomout_options zoomout;
   zoomout.final_size = m.refine_basis;
   zoomout.initial_size = std::min(zoomout.initial_size, zoomout.final_size);
@@ -228,6 +230,16 @@ int run_match(const match_options& m) {
                  res.alternative_features ? "without bumps" : "with every AGD maximum",
                  res.blended[static_cast<std::size_t>(res.selected)].geodesic_distortion,
                  res.other_features_distortion, res.alternative_features ? "with every maximum" : "without bumps");
+  if (verbose && o.both_directions) {
+    const auto two_way = [&](index_t g) { return res.blended[static_cast<std::size_t>(g)].two_way_confidence; };
+    if (res.selected != res.forward_selected)
+      std::fprintf(stderr,
+                   "both directions: blended map %ld replaced by %ld (two-way confidence %.4f against %.4f)\n",
+                   long(res.forward_selected), long(res.selected), two_way(res.selected), two_way(res.forward_selected));
+    else
+      std::fprintf(stderr, "both directions: blended map %ld kept (two-way confidence %.4f)\n", long(res.selected),
+                   two_way(res.selected));
+  }
   if (verbose && o.refine)
     std::fprintf(stderr, "refinement %s; the blended image put back at %ld vertices it moved %g or more\n",
                  res.refinement_accepted ? "kept" : "undone (it distorts too much)", long(res.refinement_moves_undone),
@@ -368,6 +380,9 @@ command_fn setup_match(CLI::App& app) {
                      "; 0 = keep every refined image)")
       ->type_name("D")
       ->check(at_least(0.0));
+  app.add_flag("--both-directions", m->both_directions,
+               "also match TGT -> SRC and select by the confidence of each map and its inverse (about twice the "
+               "time; off by default)");
   app.add_option("--threads", m->threads, "worker threads, 0 = all cores (default 0)")->type_name("T")->check(at_least(0LL));
   app.add_flag("-v,--verbose", m->verbose, "progress and timings per stage on stderr");
   app.footer(

@@ -422,8 +422,11 @@ TEST_CASE("blended_matcher with both_directions pairs every map with its inverse
   for (const auto& b : r.blended) {
     REQUIRE(b.reverse_partner >= 0);
     CHECK(b.reverse_partner < static_cast<index_t>(r.reverse_blended.size()));
-    CHECK(b.reverse_cycle_error >= 0);
+    CHECK(b.reverse_cycle_errors.size() == r.reverse_blended.size());
+    CHECK(b.reverse_cycle_error == *std::min_element(b.reverse_cycle_errors.begin(), b.reverse_cycle_errors.end()));
     CHECK(std::isfinite(b.reverse_cycle_error));
+    CHECK(b.two_way_confidence >= b.confidence_integral);
+    CHECK(b.two_way_confidence <= chosen.two_way_confidence + o.reverse_margin);
   }
   // Without the option nothing of the reverse pass is reported.
   CHECK(one_way.reverse_blended.empty());
@@ -432,30 +435,33 @@ TEST_CASE("blended_matcher with both_directions pairs every map with its inverse
 }
 
 namespace {
-blended_candidate<double> ranked(index_t rank, index_t partner, double cycle_error) {
+blended_candidate<double> with_confidence(double confidence, std::vector<double> cycle_errors = {}) {
   blended_candidate<double> c;
-  c.selection_rank = rank;
-  c.reverse_partner = partner;
-  c.reverse_cycle_error = cycle_error;
+  c.confidence_integral = confidence;
+  c.reverse_cycle_errors = std::move(cycle_errors);
   return c;
 }
 }  // namespace
 
-TEST_CASE("blended_matcher's reconciled_selection follows the reverse selection only when the rank sums say so") {
+TEST_CASE("blended_matcher's reconciled_selection replaces the selection only for a clearly higher 2-way confidence") {
   using matcher = blended_matcher<>;
-  // Reverse maps: 0 selected (rank 0), 1 ranked 1.
-  const std::vector<blended_candidate<double>> reverse = {ranked(0, no_index, 0), ranked(1, no_index, 0)};
-  // The directions agree: forward 0 pairs with the reverse selection.
-  CHECK(matcher::reconciled_selection({ranked(0, 0, 0.03), ranked(1, 1, 0.04)}, 0, reverse, 0, 0.1) == 0);
-  // They disagree: forward 0 (rank 0) pairs with reverse 1 (rank 1): sum 1; forward 1 (rank 1) with reverse 0
-  // (rank 0): sum 1. A tie keeps the forward selection.
-  CHECK(matcher::reconciled_selection({ranked(0, 1, 0.03), ranked(1, 0, 0.04)}, 0, reverse, 0, 0.1) == 0);
-  // Forward 1 ranks 1 but forward 0 has no reverse counterpart (its best cycle error is above the agreement): 0 + 2
-  // against 1 + 0, so forward 1 is taken.
-  CHECK(matcher::reconciled_selection({ranked(0, 1, 0.30), ranked(1, 0, 0.04)}, 0, reverse, 0, 0.1) == 1);
-  // No forward map comes within the agreement of the reverse selection: the forward selection stands.
-  CHECK(matcher::reconciled_selection({ranked(0, 1, 0.30), ranked(1, 0, 0.20)}, 0, reverse, 0, 0.1) == 0);
-  // With three forward maps, the one closest to the reverse selection's inverse is the candidate.
-  CHECK(matcher::reconciled_selection({ranked(0, 1, 0.50), ranked(2, 0, 0.08), ranked(1, 0, 0.02)}, 0, reverse, 0,
-                                      0.1) == 2);
+  // Reverse maps: 0 with confidence 0.80, 1 with 0.74.
+  const std::vector<blended_candidate<double>> reverse = {with_confidence(0.80), with_confidence(0.74)};
+  // Forward 0 (selected, 0.78) is the inverse of reverse 1 only; forward 1 (0.77) of reverse 0: two-way
+  // confidences 1.52 and 1.57, so forward 1 replaces the selection.
+  std::vector<blended_candidate<double>> forward = {with_confidence(0.78, {0.45, 0.04}),
+                                                    with_confidence(0.77, {0.03, 0.50})};
+  CHECK(matcher::reconciled_selection(forward, 0, reverse, 0.1, 0.01) == 1);
+  CHECK(forward[0].two_way_confidence == doctest::Approx(0.78 + 0.74));
+  CHECK(forward[1].two_way_confidence == doctest::Approx(0.77 + 0.80));
+  // Not by more than the margin: the selection stands.
+  CHECK(matcher::reconciled_selection(forward, 0, reverse, 0.1, 0.06) == 0);
+  // A forward map with no reverse map within the agreement counts none: forward 1 (0.77 + 0) loses to 0.78 + 0.74.
+  forward[1].reverse_cycle_errors = {0.30, 0.50};
+  CHECK(matcher::reconciled_selection(forward, 0, reverse, 0.1, 0.01) == 0);
+  CHECK(forward[1].two_way_confidence == doctest::Approx(0.77));
+  // The most confident reverse map within the agreement counts: forward 1 close to both reverse maps takes 0.80.
+  forward[1].reverse_cycle_errors = {0.09, 0.08};
+  CHECK(matcher::reconciled_selection(forward, 0, reverse, 0.1, 0.01) == 1);
+  CHECK(forward[1].two_way_confidence == doctest::Approx(0.77 + 0.80));
 }

@@ -222,6 +222,14 @@ endif()
 if(refined_lines STREQUAL blended_lines)
   message(FATAL_ERROR "the refined map is the unrefined one: the refinement changed nothing")
 endif()
+# --both-directions matches the other way round too and says which map the two-way confidence kept.
+run_cli(0 out match ${first_mesh} ${second_mesh} -o ${WORK}/both.map -v --refine none --both-directions)
+if(NOT out MATCHES "both directions: blended map [0-9]+ (kept|replaced by [0-9]+) \\(two-way confidence [0-9.]+")
+  message(FATAL_ERROR "match --both-directions -v does not say what the reverse match found:\n${out}")
+endif()
+if(NOT out MATCHES "consistency, reverse")
+  message(FATAL_ERROR "match --both-directions -v shows no reverse stage:\n${out}")
+endif()
 run_cli_error("bad --refine" "--refine: must be zoomout or none, got 'bogus'"
               match ${first_mesh} ${second_mesh} -o ${WORK}/x.map --refine bogus)
 run_cli_error("bad --refine-basis" "--refine-basis: must be >= 2, got 1"

@@ -129,16 +129,20 @@ struct blended_matcher_options {
   /// ... and if the refined image distorts geodesic distances more than this many times as much as the blended one
   /// against the rest of the map.
   double refinement_move_distortion_ratio = 1.5;
-  /// Also match b -> a and reconcile the two directions (off by default; docs/blended_maps.md, "Both
-  /// directions"). A pair can be ambiguous one way and not the other: a long-armed gorilla onto a human is matched
-  /// best upside down, the human onto the gorilla the right way up. When the reverse selection is not close to
-  /// the inverse of the forward one (mean cycle error at a's even samples above reverse_agreement), the forward
-  /// group that agrees best with the reverse selection replaces the forward selection if, paired with it, it has
-  /// the lower sum of the two directions' selection ranks than the forward selection paired with its own best
-  /// reverse partner. About doubles the matching time (the shapes are prepared once).
+  /// Also match b -> a and judge each forward map by its confidence in both directions (off by default;
+  /// docs/blended_maps.md, "Both directions"). A pair can be ambiguous one way and not the other: a long-armed
+  /// gorilla is matched onto a human best upside down, the human onto the gorilla the right way up. Each forward
+  /// map's two-way confidence is its integrated confidence plus that of the most confident reverse map that is
+  /// close to its inverse (mean cycle error a -> b -> a at a's even samples at most reverse_agreement; none: 0).
+  /// The forward map with the highest two-way confidence replaces the selection when it beats the selection's by
+  /// more than reverse_margin. About doubles the matching time (the shapes are prepared once).
   bool both_directions = false;
-  /// Mean cycle error a -> b -> a at a's even samples (unit-area units) up to which two maps count as inverses.
+  /// Mean cycle error (unit-area units) up to which a reverse map counts as a forward map's inverse: true inverses
+  /// come out at 0.03-0.06 on the benchmark's humans, a map and its flip's inverse at 0.4 or more.
   double reverse_agreement = 0.1;
+  /// How much higher the two-way confidence must be to replace the selection. On the benchmark's humans the
+  /// replacements that fix a pair gain 0.023-0.026, those that would swap left and right at most 0.0022.
+  double reverse_margin = 0.01;
   int threads = 0;  ///< std::threads, 0 = all cores; the result does not depend on it
   /// Progress callback (stage name, seconds spent in it); the library never prints.
   std::function<void(const std::string&, double)> on_stage{};
@@ -175,10 +179,13 @@ struct blended_candidate {
   bool alternative_features = false;
   /// The image of each even sample of the source as an internal target vertex (no_index where unmapped).
   std::vector<index_t> sample_image;
-  /// With blended_matcher_options::both_directions: the reverse match's group (blended_match_result::
-  /// reverse_blended) that agrees best with this map, and the mean cycle error with it (NaN without).
+  /// With blended_matcher_options::both_directions: the mean cycle error with every reverse map (blended_match_result
+  /// ::reverse_blended, in their order), the reverse map closest to this map's inverse and its cycle error (NaN
+  /// without), and the two-way confidence the selection compared.
+  std::vector<Scalar> reverse_cycle_errors;
   index_t reverse_partner = no_index;
   Scalar reverse_cycle_error = std::numeric_limits<Scalar>::quiet_NaN();
+  Scalar two_way_confidence = std::numeric_limits<Scalar>::quiet_NaN();
   /// The blended map (source vertices -> target surface points); empty for unselected groups unless
   /// blended_matcher_options::full_maps_for_all_groups (blended_matcher::blend_group rebuilds it).
   surface_map<Scalar> map;
@@ -321,38 +328,28 @@ class blended_matcher {
     return std::move(run.out);
   }
 
-  /// blended_matcher_options::both_directions' rule, given each forward map's reverse_partner and
-  /// reverse_cycle_error: the forward map to keep. It is `forward_selected` when that map's cycle error with its
-  /// partner is at most `agreement` and the partner is the reverse selection (the directions agree), or when no
-  /// forward map comes within `agreement` of the reverse selection. Otherwise the forward map closest to the reverse
-  /// selection's inverse replaces it if the sum of its selection_rank and the reverse selection's is lower than
-  /// the forward selection's with its own partner's (a forward map without a partner within `agreement` counts
-  /// that partner's rank as the number of reverse maps); ties keep the forward selection.
-  [[nodiscard]] static index_t reconciled_selection(const std::vector<blended_candidate<double>>& forward,
+  /// blended_matcher_options::both_directions' rule. Sets each forward map's two_way_confidence from its
+  /// reverse_cycle_errors and the reverse maps' confidence_integral, and returns the forward map to keep: the one
+  /// with the highest two-way confidence (ties: the lower index) if it beats `forward_selected`'s by more than
+  /// `margin`, otherwise `forward_selected`.
+  [[nodiscard]] static index_t reconciled_selection(std::vector<blended_candidate<double>>& forward,
                                                     index_t forward_selected,
                                                     const std::vector<blended_candidate<double>>& reverse,
-                                                    index_t reverse_selected, double agreement) {
-    const auto n_rev = static_cast<index_t>(reverse.size());
-    const auto& selected = forward[static_cast<std::size_t>(forward_selected)];
-    if (selected.reverse_cycle_error <= agreement && selected.reverse_partner == reverse_selected)
-      return forward_selected;
-    index_t partner = no_index;
-    double partner_error = std::numeric_limits<double>::infinity();
+                                                    double agreement, double margin) {
     for (index_t g = 0; g < static_cast<index_t>(forward.size()); ++g) {
-      const auto& bc = forward[static_cast<std::size_t>(g)];
-      if (bc.reverse_partner == reverse_selected && bc.reverse_cycle_error < partner_error) {
-        partner_error = bc.reverse_cycle_error;
-        partner = g;
-      }
+      auto& bc = forward[static_cast<std::size_t>(g)];
+      double inverse = 0;  // the most confident reverse map close to this map's inverse
+      for (std::size_t h = 0; h < bc.reverse_cycle_errors.size() && h < reverse.size(); ++h)
+        if (bc.reverse_cycle_errors[h] <= agreement) inverse = std::max(inverse, reverse[h].confidence_integral);
+      bc.two_way_confidence = bc.confidence_integral + inverse;
     }
-    if (partner == no_index || !(partner_error <= agreement)) return forward_selected;
-    const auto pair_rank = [&](index_t g) {
-      const auto& bc = forward[static_cast<std::size_t>(g)];
-      const bool paired = bc.reverse_cycle_error <= agreement && bc.reverse_partner >= 0 && bc.reverse_partner < n_rev;
-      return bc.selection_rank +
-             (paired ? reverse[static_cast<std::size_t>(bc.reverse_partner)].selection_rank : n_rev);
-    };
-    return pair_rank(partner) < pair_rank(forward_selected) ? partner : forward_selected;
+    index_t best = 0;
+    for (index_t g = 1; g < static_cast<index_t>(forward.size()); ++g)
+      if (forward[static_cast<std::size_t>(g)].two_way_confidence >
+          forward[static_cast<std::size_t>(best)].two_way_confidence)
+        best = g;
+    const double kept = forward[static_cast<std::size_t>(forward_selected)].two_way_confidence;
+    return forward[static_cast<std::size_t>(best)].two_way_confidence > kept + margin ? best : forward_selected;
   }
 
   /// The refinement match() applies to its selected map, with both its checks (refinement_move_check,
@@ -452,10 +449,9 @@ class blended_matcher {
     return count > 0 ? sum / static_cast<double>(count) : std::numeric_limits<double>::infinity();
   }
 
-  /// blended_matcher_options::both_directions: pairs every forward group with the reverse group that agrees best
-  /// with it, and replaces the forward selection by the forward partner of the reverse selection when that pair
-  /// has the lower rank sum (ties keep the forward selection). `run` and `back` may use either feature set; both
-  /// sets share the mesh and the samples.
+  /// blended_matcher_options::both_directions: the cycle error of every forward map with every reverse map, then
+  /// reconciled_selection; a replaced selection's map is blended at every vertex. `run` and `back` may use either
+  /// feature set; both sets share the mesh and the samples.
   void reconcile_directions(const blended_shape<double>& a, const blended_shape<double>& b, blended_run& run,
                             blended_run& back) const {
     auto& out = run.out;
@@ -464,8 +460,10 @@ class blended_matcher {
     for (auto& g : out.blended) {
       g.reverse_partner = no_index;
       g.reverse_cycle_error = std::numeric_limits<double>::infinity();
+      g.reverse_cycle_errors.clear();
       for (index_t h = 0; h < n_rev; ++h) {
         const double e = cycle_error(a, b, g.sample_image, rev.blended[static_cast<std::size_t>(h)].sample_image);
+        g.reverse_cycle_errors.push_back(e);
         if (e < g.reverse_cycle_error) {
           g.reverse_cycle_error = e;
           g.reverse_partner = h;
@@ -474,11 +472,11 @@ class blended_matcher {
     }
     out.reverse_selected = rev.selected;
     const index_t forward = out.selected;
-    const index_t partner = reconciled_selection(out.blended, forward, rev.blended, rev.selected,
-                                                 options_.reverse_agreement);
-    if (partner != forward) {
-      out.selected = partner;
-      auto& chosen = out.blended[static_cast<std::size_t>(partner)];
+    const index_t kept =
+        reconciled_selection(out.blended, forward, rev.blended, options_.reverse_agreement, options_.reverse_margin);
+    if (kept != forward) {
+      out.selected = kept;
+      auto& chosen = out.blended[static_cast<std::size_t>(kept)];
       // With both feature sets pooled, each map knows its set; otherwise every map is of the kept set.
       const bool alternative = options_.keep_both_feature_sets ? chosen.alternative_features : out.alternative_features;
       out.alternative_features = alternative;
