@@ -456,10 +456,15 @@ TEST_CASE("blended_matcher's reconciled_selection replaces the selection only fo
   CHECK(forward[1].two_way_confidence == doctest::Approx(0.77 + 0.80));
   // Not by more than the margin: the selection stands.
   CHECK(matcher::reconciled_selection(forward, 0, reverse, 0.1, 0.06) == 0);
-  // A forward map with no reverse map within the agreement counts none: forward 1 (0.77 + 0) loses to 0.78 + 0.74.
+  // A forward map with no reverse map within the agreement keeps its one-way confidence and cannot be taken.
   forward[1].reverse_cycle_errors = {0.30, 0.50};
   CHECK(matcher::reconciled_selection(forward, 0, reverse, 0.1, 0.01) == 0);
   CHECK(forward[1].two_way_confidence == doctest::Approx(0.77));
+  // Nor is a selection without one overruled: the reverse pass has no opinion on it.
+  forward = {with_confidence(0.78, {0.45, 0.30}), with_confidence(0.77, {0.03, 0.50})};
+  CHECK(matcher::reconciled_selection(forward, 0, reverse, 0.1, 0.01) == 0);
+  CHECK(forward[0].two_way_confidence == doctest::Approx(0.78));
+  forward = {with_confidence(0.78, {0.45, 0.04}), with_confidence(0.77, {0.03, 0.50})};
   // The most confident reverse map within the agreement counts: forward 1 close to both reverse maps takes 0.80.
   forward[1].reverse_cycle_errors = {0.09, 0.08};
   CHECK(matcher::reconciled_selection(forward, 0, reverse, 0.1, 0.01) == 1);
