@@ -381,8 +381,8 @@ command_fn setup_match(CLI::App& app) {
       ->type_name("D")
       ->check(at_least(0.0));
   app.add_flag("--both-directions", m->both_directions,
-               "also match TGT -> SRC and select by the confidence of each map and its inverse (about twice the "
-               "time; off by default)");
+               "also match TGT -> SRC and select by the confidence of each map and its inverse (the matching "
+               "stages run twice; off by default)");
   app.add_option("--threads", m->threads, "worker threads, 0 = all cores (default 0)")->type_name("T")->check(at_least(0LL));
   app.add_flag("-v,--verbose", m->verbose, "progress and timings per stage on stderr");
   app.footer(

@@ -136,7 +136,8 @@ struct blended_matcher_options {
   /// close to its inverse (mean cycle error a -> b -> a at a's even samples at most reverse_agreement). When the
   /// selection has such a reverse map, the forward map with the highest two-way confidence replaces it if it beats
   /// the selection's by more than reverse_margin. It gains on the benchmark's humans and loses on its animals,
-  /// hence off. About doubles the matching time (the shapes are prepared once).
+  /// hence off. The matching stages (candidates to blending) run twice; the shapes are prepared and the map
+  /// refined once (on a SCAPE pair about a quarter more time in all).
   bool both_directions = false;
   /// Mean cycle error (unit-area units) up to which a reverse map counts as a forward map's inverse: true inverses
   /// come out at 0.03-0.06 on the benchmark's humans, a map and its flip's inverse at 0.4 or more.
