@@ -11,16 +11,9 @@ it prints, per file, the pooled fraction of feature points within 0.25 and the m
 flipped pairs and how many pairs the rule changed (the pairs too, with -v). The maps are the unrefined blended
 maps, so the figures are not the refined ones of the pairs file; docs/blended_maps.md has the table this prints.
 """
-import collections
-import csv
 import sys
 
-
-def load(path):
-    pairs = collections.OrderedDict()
-    for row in csv.DictReader(open(path)):
-        pairs.setdefault((row["source"], row["target"]), []).append(row)
-    return pairs
+from bim_selection_study import load  # the per-group file, grouped by pair
 
 
 def values(row, key):

@@ -439,20 +439,25 @@ class blended_matcher {
     return run;
   }
 
-  /// Mean over the even samples of `a` of the geodesic distance on `a` from each sample to its image under
-  /// `forward` (a -> b, images of a's samples) then `backward` (b -> a, images of b's samples, read through the
-  /// sample of b nearest the forward image). Infinity when no sample goes round.
-  static double cycle_error(const blended_shape<double>& a, const blended_shape<double>& b,
-                            const std::vector<index_t>& forward, const std::vector<index_t>& backward) {
+  /// The sample of b nearest each forward image (a -> b, images of a's even samples; no_index where unmapped).
+  static std::vector<index_t> nearest_samples(const blended_shape<double>& b, const std::vector<index_t>& forward) {
+    std::vector<index_t> nearest(forward.size(), no_index);
+    for (std::size_t s = 0; s < forward.size(); ++s)
+      if (forward[s] != no_index) b.sample_distances().row(forward[s]).minCoeff(&nearest[s]);
+    return nearest;
+  }
+
+  /// Mean over the even samples of `a` of the geodesic distance on `a` from each sample to its image under a
+  /// forward map (a -> b; `nearest`: the sample of b nearest each image, nearest_samples) then `backward` (b -> a,
+  /// images of b's samples). Infinity when no sample goes round.
+  static double cycle_error(const blended_shape<double>& a, const std::vector<index_t>& nearest,
+                            const std::vector<index_t>& backward) {
     const auto& Ta = a.sample_distances();
-    const auto& Tb = b.sample_distances();
     double sum = 0;
     std::size_t count = 0;
-    for (std::size_t s = 0; s < forward.size(); ++s) {
-      if (forward[s] == no_index) continue;
-      index_t k = 0;
-      Tb.row(forward[s]).minCoeff(&k);
-      const index_t back = backward[static_cast<std::size_t>(k)];
+    for (std::size_t s = 0; s < nearest.size(); ++s) {
+      if (nearest[s] == no_index) continue;
+      const index_t back = backward[static_cast<std::size_t>(nearest[s])];
       if (back == no_index) continue;
       sum += Ta(back, static_cast<index_t>(s));
       ++count;
@@ -472,8 +477,9 @@ class blended_matcher {
       g.reverse_partner = no_index;
       g.reverse_cycle_error = std::numeric_limits<double>::infinity();
       g.reverse_cycle_errors.clear();
+      const std::vector<index_t> nearest = nearest_samples(b, g.sample_image);
       for (index_t h = 0; h < n_rev; ++h) {
-        const double e = cycle_error(a, b, g.sample_image, rev.blended[static_cast<std::size_t>(h)].sample_image);
+        const double e = cycle_error(a, nearest, rev.blended[static_cast<std::size_t>(h)].sample_image);
         g.reverse_cycle_errors.push_back(e);
         if (e < g.reverse_cycle_error) {
           g.reverse_cycle_error = e;
@@ -493,9 +499,7 @@ class blended_matcher {
       out.alternative_features = alternative;
       const blended_shape<double>& sa = alternative && a.alternative() ? *a.alternative() : a;
       const blended_shape<double>& sb = alternative && b.alternative() ? *b.alternative() : b;
-      const double score = chosen.score;  // the selection's score, from the scored face subset
-      run.internal = blend(sa, sb, out, chosen, false);
-      chosen.score = score;
+      run.internal = blend_everywhere(sa, sb, out, chosen);
       out.map = chosen.map;
     }
     for (auto& h : rev.blended) h.map = {};
@@ -554,13 +558,7 @@ class blended_matcher {
     out.selected = best;
     auto& chosen = out.blended[static_cast<std::size_t>(best)];
     surface_map<Scalar> internal = std::move(internal_maps[static_cast<std::size_t>(best)]);
-    if (internal.points.empty()) {
-      // Re-blending at every vertex: keep the area score of the scored face subset, which the selection used
-      // (the sample measures do not change: the samples are blended alike in both passes).
-      const Scalar score = chosen.score;
-      internal = blend(a, b, out, chosen, false);
-      chosen.score = score;
-    }
+    if (internal.points.empty()) internal = blend_everywhere(a, b, out, chosen);
     out.map = chosen.map;
     stage("blending", t);
     run.internal = std::move(internal);
@@ -675,6 +673,17 @@ class blended_matcher {
       kept.resize(static_cast<std::size_t>(options_.max_groups));
     for (auto& g : kept) std::sort(g.maps.begin(), g.maps.end());
     return kept;
+  }
+
+  /// A selected map blended at every vertex (internal numbering; bc.map filled). The area score stays that of the
+  /// scored face subset, which the selection used (the sample measures do not change: the samples are blended
+  /// alike in both passes).
+  surface_map<double> blend_everywhere(const blended_shape<double>& a, const blended_shape<double>& b,
+                                       const blended_match_result<double>& r, blended_candidate<double>& bc) const {
+    const double score = bc.score;
+    surface_map<double> internal = blend(a, b, r, bc, false);
+    bc.score = score;
+    return internal;
   }
 
   /// Ch. 3.3.5: f(p) = projection onto the target of sum_i c_i(p) m_i(p) / sum_i c_i(p) over the group (binary
