@@ -16,8 +16,9 @@
 // errors per pair), at the source's feature points, whose true image is the target's feature point of the same
 // name (.info / c<k>.info, matched by name, not by line), and "with flips" uses the target class's .sym.info.
 // --reverse matches every pair the other way round (target -> source; no stored result is compared then), to see
-// whether a pair that one direction gets wrong the other gets right; --both-directions turns on the matcher's
-// blended_matcher_options::both_directions (with --groups, each group's reverse partner is written too).
+// whether a pair that one direction gets wrong the other gets right; --one-direction turns off the matcher's
+// blended_matcher_options::both_directions (on by default; with --groups, each group's reverse partner is written
+// too).
 // Writes <set>_pairs.csv, <set>_errors.tsv (per-sample errors of
 // both methods, for curves), and appends to summary.md.
 #include <algorithm>
@@ -82,7 +83,8 @@ static int run(int argc, char** argv) {
   double feature_persistence = -1, alternative_persistence = -1, alternative_margin = -1;
   std::string selection;  // empty: the library default (blended_matcher_options::selection)
   int max_eigenvectors = -1, max_groups = -1;
-  bool refine = true, check_refinement = true, reverse = false, both_directions = false;
+  bool refine = true, check_refinement = true, reverse = false,
+       both_directions = blended_matcher_options{}.both_directions;
   double refinement_move_check = -1;
   zoomout_options zoomout;
   for (int i = 1; i < argc; ++i) {
@@ -104,6 +106,7 @@ static int run(int argc, char** argv) {
     else if (a == "--groups") diagnose_groups = true;
     else if (a == "--reverse") reverse = true;
     else if (a == "--both-directions") both_directions = true;
+    else if (a == "--one-direction") both_directions = false;
     else if (a == "--eigenvalue-fraction") eigenvalue_fraction = std::stod(next());
     else if (a == "--feature-radius") feature_radius = std::stod(next());
     else if (a == "--min-features") min_features = std::stoi(next());
@@ -136,7 +139,7 @@ static int run(int argc, char** argv) {
     else if (a == "--no-refinement-check") check_refinement = false;
     else {
       std::cerr << "usage: run_bim_benchmark --data DIR --set scape|tosca|shrec|humans|animals --out DIR [--limit N] [--stride K] "
-                   "[--offset O] [--threads T] [--groups] [--reverse] [--both-directions]\n"
+                   "[--offset O] [--threads T] [--groups] [--reverse] [--both-directions|--one-direction]\n"
                    "  [--eigenvalue-fraction F] [--max-eigenvectors K] [--max-groups G] [--feature-radius R] [--min-features N]\n"
                    "  [--feature-persistence P] [--alternative-persistence P] (0: one feature set) [--alternative-margin M]\n"
                    "  [--selection adaptive|confidence-distortion|confidence|area|area-confidence] (as `shapestruct match`; default: the library's)\n"

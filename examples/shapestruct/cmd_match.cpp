@@ -65,7 +65,7 @@ struct match_options {
   std::string refine = "zoomout";  // refinement of the blended map
   long long refine_basis = zoomout_options{}.final_size;
   double refinement_move_check = blended_matcher_options{}.refinement_move_check;
-  bool both_directions = false;  // also match TGT -> SRC and reconcile the two selections
+  bool both_directions = blended_matcher_options{}.both_directions;  // also match TGT -> SRC, reconcile the two
   long long threads = 0;
   bool verbose = false;
 };
@@ -230,7 +230,10 @@ int run_match(const match_options& m) {
                  res.alternative_features ? "without bumps" : "with every AGD maximum",
                  res.blended[static_cast<std::size_t>(res.selected)].geodesic_distortion,
                  res.other_features_distortion, res.alternative_features ? "with every maximum" : "without bumps");
-  if (verbose && o.both_directions) {
+  if (verbose && o.both_directions && !blended_matcher<>::judges_both_directions(o))
+    std::fprintf(stderr, "both directions: not used with --selection %s (the two-way rule judges by confidence)\n",
+                 m.selection.c_str());
+  if (verbose && blended_matcher<>::judges_both_directions(o)) {
     const auto two_way = [&](index_t g) { return res.blended[static_cast<std::size_t>(g)].two_way_confidence; };
     if (res.selected != res.forward_selected)
       std::fprintf(stderr,
@@ -380,9 +383,10 @@ command_fn setup_match(CLI::App& app) {
                      "; 0 = keep every refined image)")
       ->type_name("D")
       ->check(at_least(0.0));
-  app.add_flag("--both-directions", m->both_directions,
-               "also match TGT -> SRC and select by the confidence of each map and its inverse (the matching "
-               "stages run twice; off by default)");
+  app.add_flag("--both-directions,!--one-direction", m->both_directions,
+               "--both-directions (the default) also matches TGT -> SRC and selects by the confidence of each map "
+               "and its inverse (with the selections by confidence); --one-direction matches SRC -> TGT only (the "
+               "matching stages run once, about a quarter less time)");
   app.add_option("--threads", m->threads, "worker threads, 0 = all cores (default 0)")->type_name("T")->check(at_least(0LL));
   app.add_flag("-v,--verbose", m->verbose, "progress and timings per stage on stderr");
   app.footer(

@@ -405,9 +405,10 @@ TEST_CASE("blended_matcher with both_directions pairs every map with its inverse
   std::vector<index_t> perm;
   const auto moved = test::moved_and_permuted(m, perm);
   auto o = small_options();
-  const auto one_way = blended_matcher<>(o).match(m, moved);
-  o.both_directions = true;
+  REQUIRE(o.both_directions);  // the default
   const auto r = blended_matcher<>(o).match(m, moved);
+  o.both_directions = false;
+  const auto one_way = blended_matcher<>(o).match(m, moved);
   REQUIRE(!r.reverse_blended.empty());
   REQUIRE(r.reverse_selected >= 0);
   CHECK(r.reverse_selected < static_cast<index_t>(r.reverse_blended.size()));
@@ -432,6 +433,15 @@ TEST_CASE("blended_matcher with both_directions pairs every map with its inverse
   CHECK(one_way.reverse_blended.empty());
   CHECK(one_way.reverse_selected == no_index);
   CHECK(one_way.forward_selected == one_way.selected);
+  // Nor with a selection by area: the two-way rule compares confidences, and would overrule the area score.
+  o.both_directions = true;
+  o.selection = blended_selection::area_score;
+  CHECK(!blended_matcher<>::judges_both_directions(o));
+  const auto by_area = blended_matcher<>(o).match(m, moved);
+  CHECK(by_area.reverse_blended.empty());
+  CHECK(by_area.forward_selected == by_area.selected);
+  o.selection = blended_selection::integrated_confidence;
+  CHECK(blended_matcher<>::judges_both_directions(o));
 }
 
 namespace {

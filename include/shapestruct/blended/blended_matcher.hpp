@@ -129,22 +129,25 @@ struct blended_matcher_options {
   /// ... and if the refined image distorts geodesic distances more than this many times as much as the blended one
   /// against the rest of the map.
   double refinement_move_distortion_ratio = 1.5;
-  /// Also match b -> a and judge each forward map by its confidence in both directions (off by default;
+  /// Also match b -> a and judge each forward map by its confidence in both directions (on by default;
   /// docs/blended_maps.md, "Both directions"). A pair can be ambiguous one way and not the other: a long-armed
   /// gorilla is matched onto a human best upside down, the human onto the gorilla the right way up. Each forward
   /// map's two-way confidence is its integrated confidence plus that of the most confident reverse map that is
   /// close to its inverse (mean cycle error a -> b -> a at a's even samples at most reverse_agreement). When the
   /// selection has such a reverse map, the forward map with the highest two-way confidence replaces it if it beats
-  /// the selection's by more than reverse_margin. It gains on the benchmark's humans and loses on its animals,
-  /// hence off. The matching stages (candidates to blending) run twice; the shapes are prepared and the map
-  /// refined once (on a SCAPE pair about a quarter more time in all).
-  bool both_directions = false;
+  /// the selection's by more than reverse_margin. The matching stages (candidates to blending) run twice; the
+  /// shapes are prepared and the map refined once (on a SCAPE pair about a quarter more time in all); turn it off
+  /// for speed. It judges by confidence, so it applies with the selections by confidence (the default,
+  /// integrated_confidence, confidence_and_distortion_rank); a selection by area is left as it is and the reverse
+  /// pass skipped (blended_matcher::judges_both_directions).
+  bool both_directions = true;
   /// Mean cycle error (unit-area units) up to which a reverse map counts as a forward map's inverse: true inverses
-  /// come out at 0.03-0.06 on the benchmark's humans, a map and its flip's inverse at 0.4 or more.
-  double reverse_agreement = 0.1;
+  /// come out at 0.03-0.06 on the benchmark's humans, a map and its flip's inverse at 0.4 or more. Looser
+  /// agreements let the less isometric pairs of the animals and SHREC'07 swap maps for the worse.
+  double reverse_agreement = 0.07;
   /// How much higher the two-way confidence must be to replace the selection. On the benchmark's humans the
   /// replacements that fix a pair gain 0.023-0.026, those that would swap left and right at most 0.0022.
-  double reverse_margin = 0.01;
+  double reverse_margin = 0.02;
   int threads = 0;  ///< std::threads, 0 = all cores; the result does not depend on it
   /// Progress callback (stage name, seconds spent in it); the library never prints.
   std::function<void(const std::string&, double)> on_stage{};
@@ -302,7 +305,7 @@ class blended_matcher {
                                                    const blended_shape<double>& b) const {
     blended_run run = match_feature_sets(a, b, "");
     run.out.forward_selected = run.out.selected;
-    if (options_.both_directions) {
+    if (judges_both_directions(options_)) {
       blended_run back = match_feature_sets(b, a, ", reverse");
       const auto t = clock::now();
       reconcile_directions(a, b, run, back);
@@ -328,6 +331,13 @@ class blended_matcher {
       if (options_.on_stage) options_.on_stage("refinement", s);
     }
     return std::move(run.out);
+  }
+
+  /// Whether match() also matches b -> a and reconciles the selections: blended_matcher_options::both_directions,
+  /// with a selection by confidence (the two-way rule compares integrated confidences, not area scores).
+  [[nodiscard]] static bool judges_both_directions(const blended_matcher_options& o) {
+    return o.both_directions && o.selection != blended_selection::area_score &&
+           o.selection != blended_selection::area_and_confidence_rank;
   }
 
   /// blended_matcher_options::both_directions' rule. Sets each forward map's two_way_confidence from its

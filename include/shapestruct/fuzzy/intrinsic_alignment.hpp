@@ -38,7 +38,7 @@ namespace shapestruct {
 struct intrinsic_alignment_options {
   /// The blended matcher (its threads are forced to 1: pairs run in parallel). Its refinement is off here: the
   /// alignment reads every group's map, not only the selected one, and the refiner would recompute both shapes'
-  /// Laplace-Beltrami bases for every pair. So is the second feature set (below).
+  /// Laplace-Beltrami bases for every pair. So are the second feature set (below) and the reverse match.
   blended_matcher_options matcher = unrefined();
   /// sigma_intrinsic(S) = sigma_fraction sqrt(area(S)). The chapter (4.3.4) uses 0.3; 0.15 measured better on
   /// all 11 SHREC'07 classes together (docs/fuzzy.md: consistent blended 0.870 against 0.857 within 0.25, margin 0).
@@ -68,6 +68,9 @@ struct intrinsic_alignment_options {
     // One feature set: the alignment keeps every group's map of one match as alternatives, and a second set
     // would double each pair's matching; the collection's consistency chooses among them instead.
     o.shape.alternative_feature_persistence = 0;
+    // One direction: the alignment keeps every group's map whatever the selection, so the reverse pass would
+    // only cost time.
+    o.both_directions = false;
     return o;
   }
 };
