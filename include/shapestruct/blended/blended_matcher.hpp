@@ -306,7 +306,7 @@ class blended_matcher {
     blended_run run = match_feature_sets(a, b, "");
     run.out.forward_selected = run.out.selected;
     if (judges_both_directions(options_)) {
-      blended_run back = match_feature_sets(b, a, ", reverse");
+      blended_run back = match_feature_sets(b, a, ", reverse", false);
       const auto t = clock::now();
       reconcile_directions(a, b, run, back);
       run.out.timings.insert(run.out.timings.end(), back.out.timings.begin(), back.out.timings.end());
@@ -425,14 +425,15 @@ class blended_matcher {
   };
 
   /// match_unrefined with the full feature sets and, when either shape has a second set, with the second sets
-  /// too, keeping the second set's map only if it distorts geodesic distances clearly less.
+  /// too, keeping the second set's map only if it distorts geodesic distances clearly less (`selection_everywhere`:
+  /// as match_unrefined).
   blended_run match_feature_sets(const blended_shape<double>& a, const blended_shape<double>& b,
-                                 const std::string& suffix) const {
-    blended_run run = match_unrefined(a, b, suffix);
+                                 const std::string& suffix, bool selection_everywhere = true) const {
+    blended_run run = match_unrefined(a, b, suffix, selection_everywhere);
     if (!a.alternative() && !b.alternative()) return run;
     const blended_shape<double>& a2 = a.alternative() ? *a.alternative() : a;
     const blended_shape<double>& b2 = b.alternative() ? *b.alternative() : b;
-    blended_run second = match_unrefined(a2, b2, ", alternative features" + suffix);
+    blended_run second = match_unrefined(a2, b2, ", alternative features" + suffix, selection_everywhere);
     const double full = run.out.blended[static_cast<std::size_t>(run.out.selected)].geodesic_distortion;
     const double fewer = second.out.blended[static_cast<std::size_t>(second.out.selected)].geodesic_distortion;
     // A distortion that could not be measured (NaN) loses.
@@ -517,9 +518,10 @@ class blended_matcher {
   }
 
   /// Candidates, confidence, consistency, eigenvectors, groups, blending and selection; `suffix` is appended to
-  /// the stage names (the second feature set's run).
+  /// the stage names (the second feature set's run). Without `selection_everywhere` the selected map too is
+  /// blended at the samples only (the reverse pass needs no more), and `map` and `internal` stay empty.
   blended_run match_unrefined(const blended_shape<double>& a, const blended_shape<double>& b,
-                              const std::string& suffix) const {
+                              const std::string& suffix, bool selection_everywhere = true) const {
     using Scalar = double;
     blended_run run;
     auto& out = run.out;
@@ -568,7 +570,7 @@ class blended_matcher {
     out.selected = best;
     auto& chosen = out.blended[static_cast<std::size_t>(best)];
     surface_map<Scalar> internal = std::move(internal_maps[static_cast<std::size_t>(best)]);
-    if (internal.points.empty()) internal = blend_everywhere(a, b, out, chosen);
+    if (internal.points.empty() && selection_everywhere) internal = blend_everywhere(a, b, out, chosen);
     out.map = chosen.map;
     stage("blending", t);
     run.internal = std::move(internal);
