@@ -204,6 +204,7 @@ TEST_CASE("blended_matcher keeps the second feature set when its blended map dis
   o.shape.num_samples = 128;  // with 96 the two sets' maps of this pair distort within 1 % of each other
   o.refine = false;
   o.threads = 2;
+  o.both_directions = false;  // the stage timings below are counted for one direction
   const blended_matcher<> matcher(o);
   blended_matcher_options one_set_options = o;
   one_set_options.shape.alternative_feature_persistence = 0;
